@@ -1,0 +1,257 @@
+// fccp handles the CSV structure (header matching, comments, column counts); numbers are
+// converted here with std::from_chars, because fccp's float parser reads an empty field as 0
+// and accumulates decimal digits with rounding error.
+#include "camera/camera_path.h"
+
+#include <algorithm>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+// fccp's bounded strncpy of file names trips -Wstringop-truncation once inlined; it is intended.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wstringop-truncation"
+#endif
+#include <libfccp/csv.h>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "error.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+namespace {
+
+constexpr int kColumns = 8;
+const char* const kColumnNames[kColumns] = {"time",     "eye_x",    "eye_y",    "eye_z",
+                                            "target_x", "target_y", "target_z", "fov"};
+const char* const kHeader = "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov";
+constexpr double kMinFovDeg = 1, kMaxFovDeg = 170;
+// Relative coordinates beyond these are almost certainly world units or a typo, not a choice.
+constexpr double kMinXZ = -1, kMaxXZ = 2, kMinY = -1, kMaxY = 10;
+constexpr double kGroundClearance = 0.002;  // fraction of the extent; keeps the near plane above ground
+
+// Blank lines are tolerated as well as '#' comments: a stray empty line is not worth an error.
+using Reader = io::CSVReader<kColumns, io::trim_chars<' ', '\t'>, io::no_quote_escape<','>,
+                             io::throw_on_overflow, io::single_and_empty_line_comment<'#'>>;
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+[[noreturn]] void fail(const std::string& file, unsigned line, const std::string& what) {
+  throw InputError(file + ":" + std::to_string(line) + ": " + what);
+}
+
+[[noreturn]] void failColumn(const std::string& file, unsigned line, int col, const std::string& what) {
+  fail(file, line, std::string("column '") + kColumnNames[col] + "': " + what);
+}
+
+// Line n (1-based) of text as fccp sees it: '\n' separated, trailing '\r' and a leading BOM dropped.
+std::string lineOf(const std::string& text, unsigned n) {
+  size_t begin = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  for (unsigned i = 1; i < n && begin != std::string::npos; ++i) {
+    begin = text.find('\n', begin);
+    if (begin != std::string::npos) ++begin;
+  }
+  if (begin == std::string::npos) return {};
+  std::string line = text.substr(begin, text.find('\n', begin) - begin);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  for (std::string f; std::getline(in, f, ',');) {
+    f.erase(0, f.find_first_not_of(" \t"));
+    f.erase(f.find_last_not_of(" \t") + 1);
+    out.push_back(f);
+  }
+  if (!line.empty() && line.back() == ',') out.emplace_back();  // getline drops a trailing empty field
+  return out;
+}
+
+// fccp's own messages lack the line for header errors and never say which value is missing,
+// so rebuild them from the error type and the source text.
+std::string describe(const io::error::base& e, const std::string& text, unsigned line, unsigned headerLine) {
+  using namespace io::error;
+  const std::string expected = std::string(" (expected '") + kHeader + "')";
+  if (auto* c = dynamic_cast<const extra_column_in_header*>(&e))
+    return std::string("header: unexpected column '") + c->column_name + "'" + expected;
+  if (auto* c = dynamic_cast<const missing_column_in_header*>(&e))
+    return std::string("header: missing column '") + c->column_name + "'" + expected;
+  if (auto* c = dynamic_cast<const duplicated_column_in_header*>(&e))
+    return std::string("header: column '") + c->column_name + "' appears twice";
+  if (dynamic_cast<const header_missing*>(&e))
+    return (line == 0 ? "file is empty" : "no header line before the end of the file") + expected;
+  if (dynamic_cast<const too_few_columns*>(&e) || dynamic_cast<const too_many_columns*>(&e)) {
+    const size_t got = splitFields(lineOf(text, line)).size();
+    const std::vector<std::string> header = splitFields(lineOf(text, headerLine));
+    if (got < header.size())
+      return "column '" + header[got] + "': missing (" + std::to_string(got) + " of " +
+             std::to_string(kColumns) + " values)";
+    return std::to_string(got) + " values, but the header has " + std::to_string(kColumns) + " columns";
+  }
+  if (dynamic_cast<const line_length_limit_exceeded*>(&e)) return "line too long";
+  return e.what();
+}
+
+double parseNumber(const char* raw, const std::string& file, unsigned line, int col) {
+  const char* begin = raw;
+  const char* end = raw + std::strlen(raw);
+  if (begin == end) failColumn(file, line, col, "value is empty");
+  // from_chars rejects the leading '+' that strtod and spreadsheets accept.
+  if (*begin == '+' && end - begin > 1 && begin[1] != '-' && begin[1] != '+') ++begin;
+  double v = 0;
+  auto [ptr, ec] = std::from_chars(begin, end, v);
+  if (ec == std::errc::result_out_of_range) failColumn(file, line, col, "'" + std::string(raw) + "' is out of range");
+  if (ec != std::errc() || ptr != end) failColumn(file, line, col, "'" + std::string(raw) + "' is not a number");
+  if (!std::isfinite(v)) failColumn(file, line, col, "'" + std::string(raw) + "' is not finite");
+  return v;
+}
+
+void checkRange(double v, int col, const std::string& file, unsigned line) {
+  const bool isY = col == 2 || col == 5;
+  const double lo = isY ? kMinY : kMinXZ, hi = isY ? kMaxY : kMaxXZ;
+  if (v < lo || v > hi)
+    failColumn(file, line, col,
+               num(v) + " is outside [" + num(lo) + ", " + num(hi) + "]" +
+                   (isY ? " (y is in units of the extent above the lowest terrain point)"
+                        : " (x and z are fractions of the terrain extent)"));
+}
+
+Keyframe parseRow(const char* const (&field)[kColumns], const std::string& file, unsigned line) {
+  double v[kColumns];
+  for (int c = 0; c < kColumns; ++c) v[c] = parseNumber(field[c], file, line, c);
+  for (int c = 1; c <= 6; ++c) checkRange(v[c], c, file, line);
+  if (!(v[7] > kMinFovDeg && v[7] < kMaxFovDeg))
+    failColumn(file, line, 7, num(v[7]) + " degrees is outside (" + num(kMinFovDeg) + ", " + num(kMaxFovDeg) + ")");
+  Keyframe k;
+  k.time = v[0];
+  k.eye = {v[1], v[2], v[3]};
+  k.target = {v[4], v[5], v[6]};
+  k.fovDeg = v[7];
+  if (glm::length(k.target - k.eye) < 1e-9) fail(file, line, "columns 'target_x/y/z': target equals the eye position");
+  return k;
+}
+
+void checkFps(const CameraPath& path, double fps) {
+  if (!(fps > 0) || !std::isfinite(fps))
+    throw InputError(path.file + ": frame rate must be a positive number, got " + num(fps));
+}
+
+// Tangent in relative units per second. Interior keys use the Barry-Goldman (non-uniform
+// Catmull-Rom) derivative, a duration-weighted mean of the neighbouring chord slopes, so velocity
+// stays continuous across unevenly spaced keys. End keys act as if the endpoint were duplicated,
+// which halves the adjacent slope.
+glm::dvec3 tangent(const std::vector<Keyframe>& keys, size_t i, glm::dvec3 Keyframe::*p) {
+  auto slope = [&](size_t a) { return (keys[a + 1].*p - keys[a].*p) / (keys[a + 1].time - keys[a].time); };
+  if (i == 0) return 0.5 * slope(0);
+  if (i + 1 == keys.size()) return 0.5 * slope(i - 1);
+  const double hPrev = keys[i].time - keys[i - 1].time, hNext = keys[i + 1].time - keys[i].time;
+  return (hNext * slope(i - 1) + hPrev * slope(i)) / (hPrev + hNext);
+}
+
+glm::dvec3 hermite(const std::vector<Keyframe>& keys, size_t i, double s, glm::dvec3 Keyframe::*p) {
+  const double h = keys[i + 1].time - keys[i].time, s2 = s * s, s3 = s2 * s;
+  return (2 * s3 - 3 * s2 + 1) * (keys[i].*p) + (s3 - 2 * s2 + s) * h * tangent(keys, i, p) +
+         (-2 * s3 + 3 * s2) * (keys[i + 1].*p) + (s3 - s2) * h * tangent(keys, i + 1, p);
+}
+
+}  // namespace
+
+CameraPath parseCameraPath(const std::string& text, const std::string& nameForErrors) {
+  CameraPath path;
+  path.file = nameForErrors;
+  Reader reader(nameForErrors, text.data(), text.data() + text.size());
+  unsigned headerLine = 0;
+  try {
+    reader.read_header(io::ignore_no_column, kColumnNames[0], kColumnNames[1], kColumnNames[2], kColumnNames[3],
+                       kColumnNames[4], kColumnNames[5], kColumnNames[6], kColumnNames[7]);
+    headerLine = reader.get_file_line();
+    const char* f[kColumns];
+    unsigned prevLine = 0;
+    while (reader.read_row(f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7])) {
+      const unsigned line = reader.get_file_line();
+      Keyframe k = parseRow(f, nameForErrors, line);
+      if (!path.keys.empty() && !(k.time > path.keys.back().time))
+        failColumn(nameForErrors, line, 0,
+                   num(k.time) + " is not after the previous keyframe's " + num(path.keys.back().time) +
+                       " (line " + std::to_string(prevLine) + "); times must strictly increase");
+      path.keys.push_back(k);
+      prevLine = line;
+    }
+  } catch (const io::error::base& e) {
+    const unsigned line = reader.get_file_line();
+    fail(nameForErrors, std::max(line, 1u), describe(e, text, line, headerLine));
+  }
+  if (path.keys.size() < 2)
+    fail(nameForErrors, std::max(reader.get_file_line(), 1u),
+         "keyframes: found " + std::to_string(path.keys.size()) + ", a camera path needs at least 2");
+  return path;
+}
+
+CameraPath loadCameraPath(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw InputError("cannot open camera path " + file + ": is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("cannot open camera path " + file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseCameraPath(text.str(), file);
+}
+
+Keyframe interpolate(const CameraPath& path, double t) {
+  const std::vector<Keyframe>& keys = path.keys;
+  if (keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
+  if (!(t > keys.front().time)) return keys.front();  // also catches NaN
+  if (!(t < keys.back().time)) return keys.back();
+  // First key strictly after t; the segment starts one before it, so t at a key time gives s == 0.
+  auto next = std::upper_bound(keys.begin(), keys.end(), t, [](double v, const Keyframe& k) { return v < k.time; });
+  const size_t i = static_cast<size_t>(next - keys.begin()) - 1;
+  const double s = (t - keys[i].time) / (keys[i + 1].time - keys[i].time);
+  Keyframe k;
+  k.time = t;
+  k.eye = hermite(keys, i, s, &Keyframe::eye);
+  k.target = hermite(keys, i, s, &Keyframe::target);
+  k.fovDeg = keys[i].fovDeg + (keys[i + 1].fovDeg - keys[i].fovDeg) * s;
+  return k;
+}
+
+int frameCount(const CameraPath& path, double fps) {
+  checkFps(path, fps);
+  // The epsilon keeps a 10 s path at 60 fps from losing its last frame to 599.99999.
+  const double frames = std::floor(path.duration() * fps + 1e-9);
+  if (frames >= static_cast<double>(INT_MAX - 1))
+    throw InputError(path.file + ": " + num(fps) + " fps over " + num(path.duration()) + " s is too many frames");
+  return static_cast<int>(frames) + 1;
+}
+
+CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain) {
+  checkFps(path, fps);
+  if (path.keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
+  const Keyframe k = interpolate(path, path.keys.front().time + frame / fps);
+  const double extent = terrain.extent;
+  auto toWorld = [&](const glm::dvec3& r) {
+    return glm::vec3(glm::dvec3(r.x * extent, r.y * extent + terrain.minHeight, r.z * extent));
+  };
+  CameraPose pose;
+  pose.eye = toWorld(k.eye);
+  pose.target = toWorld(k.target);
+  pose.fovDeg = static_cast<float>(k.fovDeg);
+  const float ground = terrain.sample(pose.eye.x, pose.eye.z) + static_cast<float>(kGroundClearance * extent);
+  pose.eye.y = std::max(pose.eye.y, ground);
+  return pose;
+}
+
+}  // namespace lb

@@ -1,0 +1,162 @@
+// lodbench: command-line entry point. Subcommands: list, devices, run, render.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "camera/camera_path.h"
+#include "error.h"
+#include "render/image_io.h"
+#include "render/renderer.h"
+#include "schemes/registry.h"
+#include "sweep/config.h"
+#include "sweep/runner.h"
+#include "terrain/heightfield.h"
+#include "vk/context.h"
+
+using namespace lb;
+
+static int listSchemes() {
+  for (const Scheme* s : allSchemes()) {
+    const SchemeInfo& i = s->info();
+    std::printf("%-12s %s\n", i.name.c_str(), i.description.c_str());
+    std::printf("             seed: %s\n", i.seed.c_str());
+    std::printf("             patches: %s, partitioning: %s\n", topologyName(i.topology), partitioningName(i.partitioning));
+    for (auto& p : i.params)
+      std::printf("             %-10s default %-6g range [%g, %g]%s  %s\n", p.name.c_str(), p.defaultValue, p.min, p.max,
+                  p.integer ? " integer" : "", p.help.c_str());
+  }
+  return 0;
+}
+
+static int listDevicesCmd() {
+  for (auto& d : listDevices())
+    std::printf("[%d] %s: %s\n", d.index, d.name.c_str(), d.suitable ? "suitable" : d.rejectReason.c_str());
+  return 0;
+}
+
+struct RenderArgs {
+  std::string scheme = "sphere", path, out = "frame.png", device, terrainFile, terrainType = "procedural";
+  std::vector<std::string> params;
+  int frame = 0, width = 640, height = 360, grid = 32, size = 513;
+  unsigned seed = 1;
+  double fps = 30, extent = 1000, heightScale = -1;
+  bool wireframe = false, heatmap = false, validation = false;
+};
+
+static int renderCmd(const RenderArgs& a) {
+  const Scheme* scheme = findScheme(a.scheme);
+  if (!scheme) throw InputError("--scheme: unknown scheme '" + a.scheme + "' (known: " + schemeNames() + ")");
+  ParamValues given;
+  for (auto& kv : a.params) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos) throw InputError("--param '" + kv + "': expected name=value");
+    try {
+      given[kv.substr(0, eq)] = std::stod(kv.substr(eq + 1));
+    } catch (const std::exception&) {
+      throw InputError("--param '" + kv + "': value is not a number");
+    }
+  }
+  TerrainSpec spec;
+  spec.type = a.terrainType;
+  spec.file = a.terrainFile;
+  spec.size = a.size;
+  spec.seed = a.seed;
+  spec.extent = float(a.extent);
+  if (spec.type != "procedural") spec.heightScale = 1.0f;
+  if (a.heightScale >= 0) spec.heightScale = float(a.heightScale);
+  Heightfield terrain = makeHeightfield(spec);
+  CameraPath path = loadCameraPath(a.path);
+  int frames = frameCount(path, a.fps);
+  if (a.frame < 0 || a.frame >= frames)
+    throw InputError("--frame " + std::to_string(a.frame) + " is outside the path's " + std::to_string(frames) + " frames");
+  Context ctx;
+  createContext(ctx, {a.device, a.validation});
+  std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
+  {
+    Renderer renderer(ctx, terrain, {a.width, a.height, a.grid});
+    renderer.setScheme(*scheme, given);
+    CameraPose pose = samplePose(path, a.fps, a.frame, terrain);
+    RenderMode mode = a.wireframe ? RenderMode::Wireframe : a.heatmap ? RenderMode::Heatmap : RenderMode::Shaded;
+    FrameResult fr;
+    auto px = renderer.renderImage(pose, pose, mode, &fr);
+    writePng(a.out, a.width, a.height, px);
+    std::printf("%s: %s frame %d on %s: %llu patches, %llu triangles, %.3f ms GPU\n", a.out.c_str(), a.scheme.c_str(),
+                a.frame, ctx.props.deviceName, (unsigned long long)fr.stats.tcsPatches,
+                (unsigned long long)fr.stats.clipInvocations, fr.gpuMs);
+  }
+  return ctx.validationErrors > 0 ? 3 : 0;
+}
+
+int main(int argc, char** argv) {
+  CLI::App app{"lodbench: compare GPU terrain level-of-detail schemes on one Vulkan tessellation renderer"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", LODBENCH_VERSION);
+
+  auto* list = app.add_subcommand("list", "List LOD schemes with their parameters, defaults and ranges");
+  auto* devices = app.add_subcommand("devices", "List Vulkan devices and why each is or is not suitable");
+
+  auto* run = app.add_subcommand("run", "Run a benchmark config: every case, results to results/<name>/<run-id>/");
+  std::string configFile;
+  RunOptions ro;
+  std::string runDevice;
+  bool quiet = false;
+  run->add_option("config", configFile, "Config file (JSON), e.g. configs/quick.json")->required();
+  run->add_option("--out", ro.outDir, "Run directory (an existing one is resumed: finished cases are skipped)");
+  run->add_option("--device", runDevice, "Vulkan device: name substring or index (overrides the config)");
+  run->add_flag("--validation", ro.validation, "Enable the Vulkan validation layer");
+  run->add_flag("-q,--quiet", quiet, "No progress output");
+
+  auto* render = app.add_subcommand("render", "Render one frame of a camera path to PNG");
+  RenderArgs ra;
+  render->add_option("--scheme", ra.scheme, "LOD scheme")->capture_default_str();
+  render->add_option("--param", ra.params, "Scheme parameter name=value (repeatable)");
+  render->add_option("--path", ra.path, "Camera path CSV")->required();
+  render->add_option("--frame", ra.frame, "Frame index")->capture_default_str();
+  render->add_option("--fps", ra.fps, "Path sampling rate")->capture_default_str();
+  render->add_option("--out", ra.out, "Output PNG")->capture_default_str();
+  render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
+  render->add_option("--height", ra.height, "Image height")->capture_default_str()->check(CLI::Range(16, 8192));
+  render->add_option("--grid", ra.grid, "Patches per side")->capture_default_str()->check(CLI::Range(1, 1024));
+  render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f")->capture_default_str();
+  render->add_option("--terrain-file", ra.terrainFile, "Heightmap file for non-procedural terrains");
+  render->add_option("--size", ra.size, "Procedural terrain samples per side")->capture_default_str();
+  render->add_option("--seed", ra.seed, "Procedural terrain seed")->capture_default_str();
+  render->add_option("--extent", ra.extent, "World extent of the terrain")->capture_default_str();
+  render->add_option("--height-scale", ra.heightScale, "Height scale (procedural: peak height; files: multiplier)");
+  render->add_option("--device", ra.device, "Vulkan device: name substring or index");
+  render->add_flag("--validation", ra.validation, "Enable the Vulkan validation layer");
+  auto* modes = render->add_option_group("mode", "Image mode (default: shaded)");
+  modes->add_flag("--wireframe", ra.wireframe, "Wireframe, coloured by tessellation level");
+  modes->add_flag("--heatmap", ra.heatmap, "Tessellation level heat map (log2: blue 1, green 8, red 64)");
+  modes->require_option(0, 1);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (*list) return listSchemes();
+    if (*devices) return listDevicesCmd();
+    if (*render) return renderCmd(ra);
+    if (*run) {
+      Config config = loadConfig(configFile);
+      if (!runDevice.empty()) config.device = runDevice;
+      ro.progress = !quiet;
+      RunTotals t = runSweep(config, ro);
+      std::printf("%s\n", t.dir.c_str());
+      std::fprintf(stderr, "lodbench: %d ok (%d resumed), %d failed, %d skipped -> %s\n", t.ok, t.resumed, t.failed,
+                   t.skipped, t.dir.c_str());
+      return t.failed > 0 ? 1 : 0;
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "lodbench: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lodbench: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

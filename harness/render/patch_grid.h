@@ -1,0 +1,24 @@
+#pragma once
+// The base grid: (N+1)^2 vertices over the terrain and the control-point indices of each patch.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/scheme.h"
+
+namespace lb {
+
+struct Heightfield;
+
+std::vector<glm::vec2> gridVertices(int n, float extent);
+// Quad4: corners (i,j) (i+1,j) (i+1,j+1) (i,j+1). Quad12: the corners, then two points of each
+// neighbour across edges u=0, v=0, u=1, v=1 (clamped at the border, ch9 Listing 9.2).
+// Tri3: two triangles per quad, (00, 10, 11) and (00, 11, 01); patch = 2 * quad + k.
+std::vector<uint32_t> patchIndices(int n, Topology topology);
+uint32_t controlPointCount(Topology topology);
+uint32_t patchCountFor(int n, Topology topology);
+// Per patch (minHeight, maxHeight) over every heightfield sample the patch's bilinear surface touches.
+std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology topology);
+
+}  // namespace lb

@@ -1,0 +1,243 @@
+// The frame loop: uniforms, command recording with split draws, queries read after the fence.
+#include "render/renderer.h"
+
+#include <chrono>
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "camera/camera_path.h"
+#include "shaders/shared.h"
+#include "terrain/heightfield.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace lb {
+
+static double nowMs() {
+  using namespace std::chrono;
+  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+CameraMatrices cameraMatrices(const CameraPose& pose, float aspect, float extent) {
+  CameraMatrices m;
+  m.eye = pose.eye;
+  glm::vec3 dir = pose.target - pose.eye;
+  // Looking straight down makes lookAt's up vector degenerate; pick another one then.
+  glm::vec3 up = std::abs(glm::normalize(dir).y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+  m.view = glm::lookAt(pose.eye, pose.target, up);
+  m.proj = glm::perspective(glm::radians(pose.fovDeg), aspect, extent * 1e-4f, extent * 4.0f);
+  m.proj[1][1] *= -1.0f;  // Vulkan clip space has y down
+  return m;
+}
+
+void frustumPlanes(const glm::mat4& vp, glm::vec4 planes[6]) {
+  glm::vec4 r0(vp[0][0], vp[1][0], vp[2][0], vp[3][0]), r1(vp[0][1], vp[1][1], vp[2][1], vp[3][1]),
+      r2(vp[0][2], vp[1][2], vp[2][2], vp[3][2]), r3(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
+  planes[0] = r3 + r0;
+  planes[1] = r3 - r0;
+  planes[2] = r3 + r1;
+  planes[3] = r3 - r1;
+  planes[4] = r2;  // depth in [0,1]
+  planes[5] = r3 - r2;
+  for (int i = 0; i < 6; ++i) planes[i] /= glm::length(glm::vec3(planes[i]));
+}
+
+void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod) {
+  float aspect = float(settings_.width) / float(settings_.height);
+  CameraMatrices v = cameraMatrices(view, aspect, terrain_.extent);
+  CameraMatrices l = cameraMatrices(lod, aspect, terrain_.extent);
+  FrameUniforms u{};
+  u.viewProj = v.proj * v.view;
+  u.lodView = l.view;
+  u.lodProj = l.proj;
+  u.lodEye = glm::vec4(l.eye, 1.0f);
+  frustumPlanes(l.proj * l.view, u.frustum);
+  u.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width), 1.0f / float(settings_.height));
+  u.terrain = glm::vec4(terrain_.extent, float(settings_.grid), float(terrain_.width), float(terrain_.height));
+  u.light = glm::vec4(glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f)), 0.0f);
+  scheme_->update(u, params_);
+  std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
+}
+
+void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) {
+  VkPipeline pipe = pipeline(mode, capture);
+  VkCommandBuffer cmd = slot.cmd;
+  VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  uint32_t q0 = uint32_t(slotIndex) * kTimestampsPerSlot;
+  vkCmdResetQueryPool(cmd, timestamps_, q0, kTimestampsPerSlot);
+  vkCmdResetQueryPool(cmd, stats_, uint32_t(slotIndex), 1);
+  // Earlier frames may still write these targets: order after them, discard old contents.
+  imageBarrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  VkRenderingAttachmentInfo ca{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  ca.imageView = color_.view;
+  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  ca.clearValue.color = {{1.0f, 0.0f, 1.0f, 1.0f}};  // magenta: no terrain pixel has it
+  VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  da.imageView = depth_.view;
+  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  da.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  da.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {uint32_t(settings_.width), uint32_t(settings_.height)}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &ca;
+  ri.pDepthAttachment = &da;
+
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, q0 + kQueryTop);
+  vkCmdBeginQuery(cmd, stats_, uint32_t(slotIndex), 0);
+  vkCmdBeginRendering(cmd, &ri);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+  uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
+  VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices.
+  for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
+    uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
+    DrawPush push{first, {0, 0, 0}};
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                       &push);
+    vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
+  }
+  vkCmdEndRendering(cmd);
+  vkCmdEndQuery(cmd, stats_, uint32_t(slotIndex));
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps_, q0 + kQueryBottom);
+  if (slot.readback) {
+    imageBarrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {uint32_t(settings_.width), uint32_t(settings_.height), 1};
+    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &region);
+  }
+  if (capture) {
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.memoryBarrierCount = 1;
+    di.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &di);
+  }
+  if (slot.readback) {
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.memoryBarrierCount = 1;
+    di.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &di);
+  }
+  VK_CHECK(vkEndCommandBuffer(cmd));
+}
+
+void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod, RenderMode mode,
+                           bool capture) {
+  if (!scheme_) throw std::runtime_error("Renderer::submitFrame before setScheme");
+  double start = nowMs();
+  int si = nextSlot_;
+  nextSlot_ = (nextSlot_ + 1) % kSlots;
+  Slot& slot = slots_[size_t(si)];
+  if (slot.busy) collect(si);  // the frame kSlots ago; the one just before keeps running
+  fillUniforms(si, view, lod);
+  record(slot, si, mode, capture);
+  VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  sub.commandBufferCount = 1;
+  sub.pCommandBuffers = &slot.cmd;
+  VK_CHECK(vkResetFences(ctx_.device, 1, &slot.fence));
+  VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &sub, slot.fence));
+  slot.busy = true;
+  slot.frame = frameIndex;
+  slot.cpuMs = lastSubmitMs_ < 0 ? nowMs() - start : start - lastSubmitMs_;
+  lastSubmitMs_ = start;
+  order_.push_back(si);
+}
+
+void Renderer::collect(int si) {
+  Slot& slot = slots_[size_t(si)];
+  if (!slot.busy) return;
+  VK_CHECK(vkWaitForFences(ctx_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX));
+  uint64_t ts[kTimestampsPerSlot];
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(si) * kTimestampsPerSlot, kTimestampsPerSlot,
+                                 sizeof ts, ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  uint64_t st[8];
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(si), 1, sizeof st, st, sizeof st,
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  uint64_t mask = ctx_.props.limits.timestampPeriod > 0 ? ~0ull : 0;
+  FrameResult r;
+  r.frame = slot.frame;
+  r.gpuMs = double((ts[kQueryBottom] - ts[kQueryTop]) & mask) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
+  r.cpuMs = slot.cpuMs;
+  // Results come in the order of the statistic bits: IA, VS, clipping (0x20, 0x40), FS (0x80),
+  // then tessellation control (0x100) and evaluation (0x200).
+  r.stats.iaVertices = st[0];
+  r.stats.iaPrimitives = st[1];
+  r.stats.vsInvocations = st[2];
+  r.stats.clipInvocations = st[3];
+  r.stats.clipPrimitives = st[4];
+  r.stats.fsInvocations = st[5];
+  r.stats.tcsPatches = st[6];
+  r.stats.tesInvocations = st[7];
+  completed_.push_back(r);
+  slot.busy = false;
+  order_.erase(std::find(order_.begin(), order_.end(), si));
+}
+
+std::vector<FrameResult> Renderer::takeCompleted() {
+  std::vector<FrameResult> out;
+  out.swap(completed_);
+  return out;
+}
+
+void Renderer::finish() {
+  while (!order_.empty()) collect(order_.front());
+  lastSubmitMs_ = -1;
+}
+
+std::vector<uint8_t> Renderer::renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
+                                           FrameResult* result) {
+  finish();
+  int si = nextSlot_;
+  slots_[size_t(si)].readback = true;
+  submitFrame(-1, view, lod, mode, /*capture=*/ctx_.enabledFeatures.vertexPipelineStoresAndAtomics);
+  finish();
+  slots_[size_t(si)].readback = false;
+  auto done = takeCompleted();
+  if (result && !done.empty()) *result = done.back();
+  const auto* p = static_cast<const uint8_t*>(readback_.mapped);
+  return std::vector<uint8_t>(p, p + readback_.size);
+}
+
+std::vector<float> Renderer::capturedLevels() {
+  finish();
+  const auto* p = static_cast<const float*>(capture_.mapped);
+  return std::vector<float>(p, p + capture_.size / sizeof(float));
+}
+
+}  // namespace lb

@@ -1,0 +1,126 @@
+#pragma once
+// The one tessellation renderer shared by every scheme: offscreen colour + depth, a base grid of
+// N x N patches over the heightfield, and a ring of frames in flight whose timestamps and
+// pipeline statistics are read after each frame's fence without stalling the next frame.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/scheme.h"
+#include "vk/resources.h"
+
+namespace lb {
+
+struct Context;
+struct Heightfield;
+struct CameraPose;
+
+enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2 };
+
+struct RenderSettings {
+  int width = 320, height = 180;
+  int grid = 32;  // patches per side
+};
+
+struct PipelineStats {
+  uint64_t iaVertices = 0, iaPrimitives = 0, vsInvocations = 0;
+  uint64_t tcsPatches = 0, tesInvocations = 0;
+  uint64_t clipInvocations = 0, clipPrimitives = 0, fsInvocations = 0;
+};
+
+struct FrameResult {
+  int frame = 0;
+  double gpuMs = 0;  // timestamps around the terrain draws x timestampPeriod
+  double cpuMs = 0;  // host time between consecutive frame submissions
+  PipelineStats stats;
+};
+
+// Camera matrices in Vulkan conventions (y down in clip space, depth in [0,1]).
+struct CameraMatrices {
+  glm::mat4 view{1}, proj{1};
+  glm::vec3 eye{0};
+};
+CameraMatrices cameraMatrices(const CameraPose& pose, float aspect, float extent);
+void frustumPlanes(const glm::mat4& viewProj, glm::vec4 planes[6]);
+
+// Largest vertex count a single draw may produce (Mesa 22.3 lavapipe: 16-bit tessellator indices).
+constexpr uint32_t kMaxVerticesPerDraw = 65535;
+// Upper bound of vertices one patch can generate at tessellation level `level`.
+uint32_t maxVerticesPerPatch(float level, Partitioning partitioning);
+
+class Renderer {
+ public:
+  Renderer(Context& ctx, const Heightfield& terrain, const RenderSettings& settings);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Builds the scheme's pipelines and preprocessing; waits for frames in flight first.
+  void setScheme(const Scheme& scheme, const ParamValues& params);
+  // Records and submits a frame. `lod` is the camera the LOD decision uses (normally == view).
+  void submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod,
+                   RenderMode mode = RenderMode::Shaded, bool capture = false);
+  // Results of frames whose fences have been waited on, in submission order.
+  std::vector<FrameResult> takeCompleted();
+  void finish();  // wait for every frame in flight
+
+  // Renders one frame synchronously and returns RGBA8 pixels (width * height * 4).
+  std::vector<uint8_t> renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
+                                   FrameResult* result = nullptr);
+  // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
+  std::vector<float> capturedLevels();
+
+  const RenderSettings& settings() const { return settings_; }
+  uint32_t patchCount() const { return patchCount_; }
+  uint32_t patchesPerDraw() const { return patchesPerDraw_; }
+  uint32_t drawCount() const { return (patchCount_ + patchesPerDraw_ - 1) / patchesPerDraw_; }
+
+ private:
+  struct Slot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    bool busy = false;
+    int frame = 0;
+    double cpuMs = 0;
+    bool readback = false;
+  };
+  static constexpr int kSlots = 2;
+  enum Query : uint32_t { kQueryTop = 0, kQueryBottom = 1, kTimestampsPerSlot = 2 };
+
+  void createTargets();
+  void createGrid();
+  void createDescriptors();
+  void destroyPipelines();
+  VkPipeline pipeline(RenderMode mode, bool capture);
+  void record(Slot& slot, int slotIndex, RenderMode mode, bool capture);
+  void collect(int slotIndex);
+  void fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod);
+
+  Context& ctx_;
+  const Heightfield& terrain_;
+  RenderSettings settings_;
+  const Scheme* scheme_ = nullptr;
+  ParamValues params_;
+  Image color_, depth_, height_, schemeTex_;
+  Buffer readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
+  VkDeviceSize uniformStride_ = 0;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool descPool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  std::map<int, VkPipeline> pipelines_;  // key: mode * 2 + capture
+  VkQueryPool timestamps_ = VK_NULL_HANDLE, stats_ = VK_NULL_HANDLE;
+  std::array<Slot, kSlots> slots_{};
+  int nextSlot_ = 0;
+  std::vector<int> order_;  // slots in submission order
+  std::vector<FrameResult> completed_;
+  uint32_t patchCount_ = 0, controlPoints_ = 4, patchesPerDraw_ = 1;
+  double lastSubmitMs_ = -1;
+};
+
+}  // namespace lb

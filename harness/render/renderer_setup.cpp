@@ -1,0 +1,289 @@
+// Renderer construction: targets, terrain grid, descriptors and pipelines.
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "render/patch_grid.h"
+#include "render/renderer.h"
+#include "shaders/shared.h"
+#include "terrain/heightfield.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace lb {
+
+static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+uint32_t maxVerticesPerPatch(float level, Partitioning partitioning) {
+  // Fractional modes round the segment count up to the next even/odd integer.
+  int seg = int(std::ceil(std::max(level, 1.0f)));
+  if (partitioning != Partitioning::Integer) seg += 1;
+  seg = std::min(seg, 64);
+  return uint32_t(seg + 1) * uint32_t(seg + 1);  // the quad domain bounds the triangle domain too
+}
+
+Renderer::Renderer(Context& ctx, const Heightfield& terrain, const RenderSettings& settings)
+    : ctx_(ctx), terrain_(terrain), settings_(settings) {
+  if (settings.width < 16 || settings.height < 16 || settings.width > 8192 || settings.height > 8192)
+    throw std::runtime_error("resolution must be within 16..8192 pixels per side");
+  if (settings.grid < 1 || settings.grid > 1024) throw std::runtime_error("grid must be within 1..1024 patches per side");
+  createTargets();
+  createDescriptors();
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = ctx_.commandPool;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  for (auto& s : slots_) {
+    VK_CHECK(vkAllocateCommandBuffers(ctx_.device, &ai, &s.cmd));
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(ctx_.device, &fi, nullptr, &s.fence));
+  }
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = kSlots * kTimestampsPerSlot;
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &timestamps_));
+  qi.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+  qi.queryCount = kSlots;
+  qi.pipelineStatistics =
+      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT | VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &stats_));
+}
+
+Renderer::~Renderer() {
+  finish();
+  destroyPipelines();
+  for (auto& s : slots_) {
+    vkDestroyFence(ctx_.device, s.fence, nullptr);
+    vkFreeCommandBuffers(ctx_.device, ctx_.commandPool, 1, &s.cmd);
+  }
+  vkDestroyQueryPool(ctx_.device, stats_, nullptr);
+  vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
+  vkDestroyPipelineLayout(ctx_.device, pipelineLayout_, nullptr);
+  vkDestroyDescriptorPool(ctx_.device, descPool_, nullptr);
+  vkDestroyDescriptorSetLayout(ctx_.device, setLayout_, nullptr);
+  vkDestroySampler(ctx_.device, sampler_, nullptr);
+  for (Buffer* b : {&readback_, &vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &uniforms_})
+    destroyBuffer(ctx_, *b);
+  for (Image* i : {&color_, &depth_, &height_, &schemeTex_}) destroyImage(ctx_, *i);
+}
+
+void Renderer::createTargets() {
+  auto w = uint32_t(settings_.width), h = uint32_t(settings_.height);
+  createImage(ctx_, color_, w, h, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT);
+  createImage(ctx_, depth_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  createBuffer(ctx_, readback_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  createImage(ctx_, height_, uint32_t(terrain_.width), uint32_t(terrain_.height), VK_FORMAT_R32_SFLOAT,
+              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  uploadImage(ctx_, height_, terrain_.h.data(), terrain_.h.size() * sizeof(float));
+  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VK_CHECK(vkCreateSampler(ctx_.device, &si, nullptr, &sampler_));
+  // Placeholder scheme resources so every binding is valid for schemes without preprocessing.
+  float zero[4] = {0, 0, 0, 0};
+  createImage(ctx_, schemeTex_, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  uploadImage(ctx_, schemeTex_, zero, sizeof zero);
+  createBufferWithData(ctx_, schemeBuf_, zero, sizeof zero, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
+                   ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
+  createBuffer(ctx_, uniforms_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+}
+
+void Renderer::createGrid() {
+  destroyBuffer(ctx_, vertices_);
+  destroyBuffer(ctx_, indices_);
+  destroyBuffer(ctx_, bounds_);
+  destroyBuffer(ctx_, capture_);
+  Topology topo = scheme_->info().topology;
+  auto verts = gridVertices(settings_.grid, terrain_.extent);
+  auto idx = patchIndices(settings_.grid, topo);
+  auto bounds = patchHeightBounds(terrain_, settings_.grid, topo);
+  patchCount_ = patchCountFor(settings_.grid, topo);
+  controlPoints_ = controlPointCount(topo);
+  createBufferWithData(ctx_, vertices_, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  createBufferWithData(ctx_, indices_, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  createBufferWithData(ctx_, bounds_, bounds.data(), bounds.size() * sizeof(bounds[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  createBuffer(ctx_, capture_, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
+               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  std::memset(capture_.mapped, 0, size_t(capture_.size));
+  uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->info().partitioning);
+  patchesPerDraw_ = std::max(1u, kMaxVerticesPerDraw / perPatch);
+}
+
+void Renderer::createDescriptors() {
+  VkShaderStageFlags all = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
+  VkDescriptorSetLayoutBinding b[] = {
+      {LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, all, nullptr},
+      {LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+  };
+  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  li.bindingCount = uint32_t(std::size(b));
+  li.pBindings = b;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx_.device, &li, nullptr, &setLayout_));
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = 1;
+  pi.poolSizeCount = uint32_t(std::size(sizes));
+  pi.pPoolSizes = sizes;
+  VK_CHECK(vkCreateDescriptorPool(ctx_.device, &pi, nullptr, &descPool_));
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = descPool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &setLayout_;
+  VK_CHECK(vkAllocateDescriptorSets(ctx_.device, &ai, &set_));
+  VkPushConstantRange pc{all, 0, sizeof(DrawPush)};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout_;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &pc;
+  VK_CHECK(vkCreatePipelineLayout(ctx_.device, &pli, nullptr, &pipelineLayout_));
+}
+
+void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
+  finish();
+  destroyPipelines();
+  scheme_ = &scheme;
+  params_ = resolveParams(scheme.info(), params);
+  createGrid();
+  SchemeTexture tex = scheme.preprocess(terrain_, params_);
+  destroyImage(ctx_, schemeTex_);
+  if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
+  createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), VK_FORMAT_R32G32B32A32_SFLOAT,
+              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  uploadImage(ctx_, schemeTex_, tex.rgba.data(), tex.rgba.size() * sizeof(float));
+
+  VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
+  VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorBufferInfo bb{bounds_.buffer, 0, VK_WHOLE_SIZE}, cb{capture_.buffer, 0, VK_WHOLE_SIZE},
+      sb{schemeBuf_.buffer, 0, VK_WHOLE_SIZE};
+  auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* img,
+                   const VkDescriptorBufferInfo* buf) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set_;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pImageInfo = img;
+    w.pBufferInfo = buf;
+    return w;
+  };
+  VkWriteDescriptorSet writes[] = {
+      write(LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &ub),
+      write(LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &hi, nullptr),
+      write(LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &si, nullptr),
+      write(LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &bb),
+      write(LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &cb),
+      write(LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &sb),
+  };
+  vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
+}
+
+void Renderer::destroyPipelines() {
+  for (auto& [key, p] : pipelines_) vkDestroyPipeline(ctx_.device, p, nullptr);
+  pipelines_.clear();
+}
+
+VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
+  int key = int(mode) * 2 + (capture ? 1 : 0);
+  if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
+  const SchemeInfo& info = scheme_->info();
+  if (mode == RenderMode::Wireframe && !ctx_.enabledFeatures.fillModeNonSolid)
+    throw std::runtime_error("device lacks fillModeNonSolid: wireframe images are unavailable");
+  if (capture && !ctx_.enabledFeatures.vertexPipelineStoresAndAtomics)
+    throw std::runtime_error("device lacks vertexPipelineStoresAndAtomics: tessellation factors cannot be captured");
+  VkShaderModule vs = loadShaderModule(ctx_, "terrain.vert.spv");
+  VkShaderModule tcs = loadShaderModule(ctx_, info.tesc + ".tesc.spv");
+  VkShaderModule tes = loadShaderModule(ctx_, info.tese + "_" + partitioningName(info.partitioning) + ".tese.spv");
+  VkShaderModule fs = loadShaderModule(ctx_, "terrain.frag.spv");
+  int modeValue = int(mode);
+  VkBool32 captureValue = capture;
+  VkSpecializationMapEntry modeEntry{0, 0, sizeof(int)}, captureEntry{1, 0, sizeof(VkBool32)};
+  VkSpecializationInfo modeSpec{1, &modeEntry, sizeof(int), &modeValue};
+  VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
+  VkPipelineShaderStageCreateInfo stages[4] = {};
+  VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+                                   VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, VK_SHADER_STAGE_FRAGMENT_BIT};
+  VkShaderModule mods[4] = {vs, tcs, tes, fs};
+  for (int i = 0; i < 4; ++i) {
+    stages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    stages[i].stage = bits[i];
+    stages[i].module = mods[i];
+    stages[i].pName = "main";
+  }
+  stages[1].pSpecializationInfo = &captureSpec;
+  stages[3].pSpecializationInfo = &modeSpec;
+  VkVertexInputBindingDescription vb{0, sizeof(float) * 2, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkVertexInputAttributeDescription va{0, 0, VK_FORMAT_R32G32_SFLOAT, 0};
+  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vi.vertexBindingDescriptionCount = 1;
+  vi.pVertexBindingDescriptions = &vb;
+  vi.vertexAttributeDescriptionCount = 1;
+  vi.pVertexAttributeDescriptions = &va;
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+  VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+  ts.patchControlPoints = controlPoints_;
+  VkViewport viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
+  VkRect2D scissor{{0, 0}, {uint32_t(settings_.width), uint32_t(settings_.height)}};
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.pViewports = &viewport;
+  vp.scissorCount = 1;
+  vp.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = mode == RenderMode::Wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;  // back faces are counted by the histogram pass, not hidden
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  ds.depthTestEnable = VK_TRUE;
+  ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = mode == RenderMode::Wireframe ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState att{};
+  att.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = 1;
+  cb.pAttachments = &att;
+  VkFormat colorFormat = kColorFormat;
+  VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachmentFormats = &colorFormat;
+  ri.depthAttachmentFormat = kDepthFormat;
+  VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &ri};
+  gi.stageCount = 4;
+  gi.pStages = stages;
+  gi.pVertexInputState = &vi;
+  gi.pInputAssemblyState = &ia;
+  gi.pTessellationState = &ts;
+  gi.pViewportState = &vp;
+  gi.pRasterizationState = &rs;
+  gi.pMultisampleState = &ms;
+  gi.pDepthStencilState = &ds;
+  gi.pColorBlendState = &cb;
+  gi.layout = pipelineLayout_;
+  VkPipeline p;
+  VkResult r = vkCreateGraphicsPipelines(ctx_.device, VK_NULL_HANDLE, 1, &gi, nullptr, &p);
+  for (VkShaderModule m : mods) vkDestroyShaderModule(ctx_.device, m, nullptr);
+  VK_CHECK(r);
+  pipelines_[key] = p;
+  return p;
+}
+
+}  // namespace lb

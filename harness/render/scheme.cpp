@@ -1,0 +1,60 @@
+#include "render/scheme.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "error.h"
+#include "shaders/shared.h"
+
+namespace lb {
+
+void Scheme::update(FrameUniforms& frame, const ParamValues& values) const {
+  const auto& specs = info().params;
+  for (size_t i = 0; i < specs.size() && i < LB_SCHEME_PARAM_VEC4S * 4; ++i)
+    frame.params[i / 4][int(i % 4)] = float(values.at(specs[i].name));
+}
+
+ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
+  ParamValues out;
+  for (auto& p : info.params) out[p.name] = p.defaultValue;
+  for (auto& [name, value] : given) {
+    const ParamSpec* spec = nullptr;
+    for (auto& p : info.params)
+      if (p.name == name) spec = &p;
+    if (!spec) {
+      std::string known;
+      for (auto& p : info.params) known += (known.empty() ? "" : ", ") + p.name;
+      throw InputError("scheme '" + info.name + "' has no parameter '" + name + "' (parameters: " +
+                       (known.empty() ? "none" : known) + ")");
+    }
+    std::ostringstream range;
+    range << "[" << spec->min << ", " << spec->max << "]";
+    if (!std::isfinite(value) || value < spec->min || value > spec->max)
+      throw InputError("scheme '" + info.name + "' parameter '" + name + "' = " + std::to_string(value) +
+                       " is outside " + range.str());
+    if (spec->integer && value != std::floor(value))
+      throw InputError("scheme '" + info.name + "' parameter '" + name + "' must be an integer");
+    out[name] = value;
+  }
+  return out;
+}
+
+const char* partitioningName(Partitioning p) {
+  switch (p) {
+    case Partitioning::Integer: return "integer";
+    case Partitioning::FractionalEven: return "fractional_even";
+    case Partitioning::FractionalOdd: return "fractional_odd";
+  }
+  return "?";
+}
+
+const char* topologyName(Topology t) {
+  switch (t) {
+    case Topology::Quad4: return "quad4";
+    case Topology::Quad12: return "quad12";
+    case Topology::Tri3: return "tri3";
+  }
+  return "?";
+}
+
+}  // namespace lb

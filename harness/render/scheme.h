@@ -1,0 +1,62 @@
+#pragma once
+// The scheme interface (design section 3): everything that differs between LOD methods.
+// Terrain, camera, shading and instrumentation belong to the renderer and are shared.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lb {
+
+struct FrameUniforms;
+struct Heightfield;
+
+enum class Topology { Quad4, Quad12, Tri3 };
+enum class Partitioning { Integer, FractionalEven, FractionalOdd };
+
+struct ParamSpec {
+  std::string name;
+  double defaultValue = 0;
+  double min = 0, max = 0;
+  bool integer = false;
+  std::string help;
+};
+
+struct SchemeInfo {
+  std::string name;
+  std::string description;  // one line
+  std::string seed;         // source document and section it follows
+  std::vector<ParamSpec> params;  // packed into FrameUniforms::params in this order
+  Topology topology = Topology::Quad4;
+  Partitioning partitioning = Partitioning::FractionalEven;
+  std::string tesc;                       // shader stem: shaders/<tesc>.tesc
+  std::string tese = "terrain_quad";      // shared evaluation shader stem
+  bool culls = false;                     // may output factor 0 for patches outside the frustum
+};
+
+using ParamValues = std::map<std::string, double>;
+
+// Optional preprocessing output a scheme hands to the renderer (bound at LB_BINDING_SCHEME_TEX).
+struct SchemeTexture {
+  int width = 0, height = 0;
+  std::vector<float> rgba;  // width * height * 4
+};
+
+class Scheme {
+ public:
+  virtual ~Scheme() = default;
+  virtual const SchemeInfo& info() const = 0;
+  // Largest tessellation level the scheme can emit with these parameters (sizes draw splits).
+  virtual float maxLevel(const ParamValues&) const { return 64.0f; }
+  // Load-time preprocessing on the CPU; empty texture when the scheme needs none.
+  virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
+  // Per-frame CPU work: packs parameters into the uniform block (override for more).
+  virtual void update(FrameUniforms& frame, const ParamValues& values) const;
+};
+
+// Fills defaults, rejects unknown names and out-of-range values with a message naming them.
+ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given);
+const char* partitioningName(Partitioning p);
+const char* topologyName(Topology t);
+
+}  // namespace lb

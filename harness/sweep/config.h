@@ -1,0 +1,57 @@
+#pragma once
+// A run/sweep config (JSON). Its cases are the cartesian product of schemes x parameter values x
+// camera paths x terrains x resolutions.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/scheme.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+
+struct SchemeEntry {
+  std::string name;
+  std::vector<ParamValues> variants;  // expanded parameter grid (at least one, possibly empty map)
+};
+
+struct ImageRequest {
+  std::vector<int> frames;          // path frame indices (negative counts from the end)
+  std::vector<std::string> modes;   // shaded | heatmap | wireframe
+};
+
+struct Config {
+  std::string file;        // where it was read from (for messages)
+  std::string name = "run";
+  std::string device;      // "" = default (lavapipe where present)
+  std::vector<std::pair<int, int>> resolutions{{320, 180}};
+  int grid = 32;
+  double fps = 30;
+  int warmupFrames = 5;
+  int maxFrames = 0;       // 0 = every frame of the path
+  int repetitions = 1;
+  std::vector<TerrainSpec> terrains;
+  std::vector<std::string> paths;  // resolved file paths
+  std::vector<SchemeEntry> schemes;
+  ImageRequest images;
+  nlohmann::json raw;      // the config as written, recorded in results
+};
+
+struct Case {
+  std::string id;
+  std::string scheme;
+  ParamValues params;
+  TerrainSpec terrain;
+  std::string terrainLabel;
+  std::string path;
+  int width = 0, height = 0;
+};
+
+// Throws lb::InputError "file:line: field: problem".
+Config loadConfig(const std::string& file);
+Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir);
+std::vector<Case> expandCases(const Config& config);
+std::string terrainLabel(const TerrainSpec& t);
+
+}  // namespace lb

@@ -1,0 +1,37 @@
+#pragma once
+// Result files (design section 7): run.json, cases/<id>.json, frames.csv, summary.json.
+// Every write is atomic (temp file + rename), so a killed run leaves no corrupt file.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/renderer.h"
+
+namespace lb {
+
+constexpr int kSchemaVersion = 1;
+
+struct Context;
+struct Config;
+struct Case;
+
+struct CaseResult {
+  std::string status = "ok";  // ok | failed | skipped
+  std::string reason;
+  std::vector<FrameResult> frames;
+  std::vector<std::string> images;  // relative to the run dir
+  double seconds = 0;
+};
+
+void writeFileAtomic(const std::string& path, const std::string& contents);
+std::string gitCommit();
+std::string isoTimeUtc();
+// The context block every result file carries (tool, commit, device, driver, host, time, config).
+nlohmann::json runContext(const Context& ctx, const Config& config);
+nlohmann::json caseSummary(const CaseResult& r);
+nlohmann::json caseJson(const Case& c, const CaseResult& r);
+std::string framesCsvHeader();
+std::string framesCsvRows(const std::string& caseId, const CaseResult& r);
+
+}  // namespace lb

@@ -1,0 +1,225 @@
+#include "terrain/heightfield.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "error.h"
+
+// makeProcedural promises the same bits on every machine. Fusing a*b+c into an FMA rounds once
+// instead of twice, so a compiler that contracts (GCC's default in gnu++ mode on FMA targets,
+// Clang's default everywhere) would make ARM and x86 terrains differ. Forbid it for this file.
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+namespace lb {
+
+float Heightfield::at(int x, int z) const {
+  x = std::clamp(x, 0, width - 1);
+  z = std::clamp(z, 0, height - 1);
+  return h[size_t(z) * size_t(width) + size_t(x)];
+}
+
+namespace {
+
+// GLSL's definition of mix(); exact at a = 0 and a = 1, which keeps sample() == at() on grid points.
+inline float mixf(float x, float y, float a) { return x * (1.0f - a) + y * a; }
+
+// clamp to [0,1] that maps NaN to 0 instead of passing it on to a float->int conversion.
+inline float saturate(float v) {
+  v = v > 0.0f ? v : 0.0f;
+  return v < 1.0f ? v : 1.0f;
+}
+
+// Splits texel coordinate t of an axis with n samples into a base index and a fraction.
+inline void texelSplit(float t, int n, int& i0, float& f) {
+  i0 = n > 1 ? std::min(int(std::floor(t)), n - 2) : 0;
+  f = t - float(i0);
+}
+
+}  // namespace
+
+// shaders/common.glsl terrainHeight() must do exactly this arithmetic (same clamp, same floor,
+// same mix order); the CPU copy is what collision, camera paths and error metrics read.
+float Heightfield::sample(float worldX, float worldZ) const {
+  const float tx = saturate(worldX / extent) * float(width - 1);
+  const float tz = saturate(worldZ / extent) * float(height - 1);
+  int x0, z0;
+  float fx, fz;
+  texelSplit(tx, width, x0, fx);
+  texelSplit(tz, height, z0, fz);
+  const float h00 = at(x0, z0), h10 = at(x0 + 1, z0);
+  const float h01 = at(x0, z0 + 1), h11 = at(x0 + 1, z0 + 1);
+  return mixf(mixf(h00, h10, fx), mixf(h01, h11, fx), fz);
+}
+
+void Heightfield::updateRange() {
+  if (h.empty()) {
+    minHeight = maxHeight = 0.0f;
+    return;
+  }
+  const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+  minHeight = *lo;
+  maxHeight = *hi;
+}
+
+namespace {
+
+constexpr int kMinSize = 2;
+constexpr int kMaxSize = 16385;
+constexpr int kOctaves = 8;
+constexpr int kRidgedOctaves = 5;       // octaves 1..5; octave 0 is uplift, the rest fBm detail
+constexpr float kBaseFrequency = 1.5f;  // noise cells across the whole terrain at octave 0
+constexpr float kRidgeOffset = 1.0f;    // Musgrave's offset: 1 puts the crest at noise == 0
+constexpr float kRidgeGain = 2.0f;      // how strongly a high octave gates the next one
+constexpr float kGain = 0.5f;           // amplitude ratio between octaves (exact in binary)
+constexpr float kUpliftScale = 0.5f;    // weight of the broad uplift relative to the ridges
+// Each octave is rotated by ~36.87 degrees (a 3-4-5 triangle, so the entries are exact decimals
+// without trig) and scaled by 2; the rotation hides the axis-aligned lattice of the noise.
+constexpr float kRotC = 0.8f * 2.0f, kRotS = 0.6f * 2.0f;
+// 2D gradient noise peaks at ~0.71 with these gradients; stretch it to roughly [-1, 1].
+constexpr float kNoiseScale = 1.41f;
+
+// lowbias32 (Chris Wellons): a cheap integer finaliser with good avalanche.
+inline uint32_t mix32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+inline uint32_t hashCell(int32_t x, int32_t z, uint32_t seed) {
+  return mix32(uint32_t(x) * 0x8da6b343u ^ mix32(uint32_t(z) * 0xd8163841u ^ seed));
+}
+
+inline int fastFloor(float v) {
+  const int i = int(v);
+  return v < float(i) ? i - 1 : i;
+}
+
+// Dot of one of 8 unit gradients (picked by the top hash bits) with the offset (dx, dz).
+inline float gradDot(uint32_t hash, float dx, float dz) {
+  constexpr float kD = 0.70710678f;
+  static constexpr float kGrad[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {kD, kD}, {-kD, kD}, {kD, -kD}, {-kD, -kD}};
+  const float* g = kGrad[hash >> 29];
+  return g[0] * dx + g[1] * dz;
+}
+
+inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+
+// Perlin-style gradient noise, roughly in [-1, 1], zero on lattice points.
+float gradientNoise(float x, float z, uint32_t seed) {
+  const int xi = fastFloor(x), zi = fastFloor(z);
+  const float fx = x - float(xi), fz = z - float(zi);
+  const float n00 = gradDot(hashCell(xi, zi, seed), fx, fz);
+  const float n10 = gradDot(hashCell(xi + 1, zi, seed), fx - 1.0f, fz);
+  const float n01 = gradDot(hashCell(xi, zi + 1, seed), fx, fz - 1.0f);
+  const float n11 = gradDot(hashCell(xi + 1, zi + 1, seed), fx - 1.0f, fz - 1.0f);
+  const float u = fade(fx), v = fade(fz);
+  return mixf(mixf(n00, n10, u), mixf(n01, n11, u), v) * kNoiseScale;
+}
+
+struct Octave {
+  uint32_t seed;
+  float offsetX, offsetZ;  // moves the zero-valued lattice points of the octaves apart
+  float amplitude;
+};
+
+// Hybrid in the spirit of Musgrave: octave 0 is a smooth fBm uplift that decides where the ranges
+// are (and gates the first ridge octave, so lowlands get low, soft ridges); octaves 1..5 are a
+// ridged multifractal (sharp crests, each octave gated by the previous one so valleys stay
+// smooth); the top octaves are fBm detail scaled by the ridges, so peaks are rough and valley
+// floors calm.
+float hybridMultifractal(float x, float z, const Octave* oct) {
+  float uplift = 0.0f, ridged = 0.0f, detail = 0.0f, weight = 1.0f;
+  for (int i = 0; i < kOctaves; ++i) {
+    const float n = gradientNoise(x + oct[i].offsetX, z + oct[i].offsetZ, oct[i].seed);
+    if (i == 0) {
+      uplift = 0.5f + 0.5f * n;
+      weight = std::clamp(uplift * kRidgeGain, 0.0f, 1.0f);
+    } else if (i <= kRidgedOctaves) {
+      float ridge = kRidgeOffset - std::fabs(n);
+      ridge *= ridge * weight;
+      weight = std::clamp(ridge * kRidgeGain, 0.0f, 1.0f);
+      ridged += ridge * oct[i].amplitude;
+    } else {
+      detail += n * oct[i].amplitude;
+    }
+    const float rx = kRotC * x - kRotS * z;
+    z = kRotS * x + kRotC * z;
+    x = rx;
+  }
+  // Squaring widens the valleys and sharpens the peaks (a raw ridged sum is plateau-heavy).
+  return uplift * kUpliftScale + ridged * ridged + detail * ridged;
+}
+
+void requireFinitePositive(float v, const char* what) {
+  if (!(std::isfinite(v) && v > 0.0f))
+    throw InputError("terrain: " + std::string(what) + " " + std::to_string(v) + " must be a positive finite number");
+}
+
+}  // namespace
+
+Heightfield makeProcedural(const TerrainSpec& spec) {
+  if (spec.size < kMinSize || spec.size > kMaxSize)
+    throw InputError("terrain: procedural size " + std::to_string(spec.size) + " is outside [" +
+                     std::to_string(kMinSize) + ", " + std::to_string(kMaxSize) + "]");
+  requireFinitePositive(spec.extent, "extent");
+  requireFinitePositive(spec.heightScale, "heightScale");
+
+  Octave oct[kOctaves];
+  float amplitude = 1.0f;
+  for (int i = 0; i < kOctaves; ++i) {
+    const uint32_t s = mix32(spec.seed * 0x9e3779b9u + uint32_t(i) * 0x85ebca6bu + 0x165667b1u);
+    const uint32_t a = mix32(s ^ 0x27d4eb2fu), b = mix32(s ^ 0x61c88647u);
+    // 24-bit fractions -> offsets in [0, 256): exact in float, far from the lattice of octave 0.
+    oct[i] = {s, float(a >> 8) * (256.0f / 16777216.0f), float(b >> 8) * (256.0f / 16777216.0f), amplitude};
+    if (i > 0) amplitude *= kGain;
+  }
+
+  Heightfield hf;
+  hf.width = hf.height = spec.size;
+  hf.extent = spec.extent;
+  hf.h.resize(size_t(spec.size) * size_t(spec.size));
+  const float step = kBaseFrequency / float(spec.size - 1);
+  auto fillRows = [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z) {
+      float* row = &hf.h[size_t(z) * size_t(spec.size)];
+      for (int x = 0; x < spec.size; ++x) row[x] = hybridMultifractal(float(x) * step, float(z) * step, oct);
+    }
+  };
+  // Samples are independent, so splitting rows across threads cannot change a single bit; it only
+  // matters for the large sizes (16385^2 takes ~30 s on one core).
+  const int threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1u, 64u));
+  const int chunks = std::max(1, std::min(threads, spec.size / 256));
+  std::vector<std::thread> pool;
+  for (int c = 1; c < chunks; ++c)
+    pool.emplace_back(fillRows, spec.size * c / chunks, spec.size * (c + 1) / chunks);
+  fillRows(0, spec.size / chunks);
+  for (std::thread& t : pool) t.join();
+
+  hf.updateRange();
+  const float span = hf.maxHeight - hf.minHeight;
+  const float scale = span > 0.0f ? spec.heightScale / span : 0.0f;
+  const float lo = hf.minHeight;
+  // Clamp because (max - min) * (heightScale / span) can round a hair above heightScale.
+  for (float& v : hf.h) v = std::min((v - lo) * scale, spec.heightScale);
+  hf.updateRange();
+  return hf;
+}
+
+Heightfield makeHeightfield(const TerrainSpec& spec) {
+  if (spec.type == "procedural") return makeProcedural(spec);
+  if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f")
+    return loadHeightfield(spec);
+  throw InputError("terrain: unknown type '" + spec.type + "' (valid types: procedural, hgt, png16, r16, r32f)");
+}
+
+}  // namespace lb

@@ -1,0 +1,43 @@
+#pragma once
+// A terrain heightfield: samples on a regular grid covering [0, extent] x [0, extent] in world x/z.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lb {
+
+struct Heightfield {
+  int width = 0;   // samples along x
+  int height = 0;  // samples along z
+  float extent = 1000.0f;  // world size covered along x and z (corner samples sit on the border)
+  std::vector<float> h;    // world-space heights (heightScale applied), row-major, row = z
+  float minHeight = 0.0f;
+  float maxHeight = 0.0f;
+
+  float at(int x, int z) const;            // clamped to the border
+  // Bilinear height at world (x, z). Must match shaders/common.glsl terrainHeight() exactly:
+  // texel coords t = (p / extent) * (size - 1), clamped, lerp of the 4 neighbours.
+  float sample(float worldX, float worldZ) const;
+  void updateRange();
+};
+
+// Where a heightfield comes from. Mirrors the "terrain" object of a config file.
+struct TerrainSpec {
+  std::string type = "procedural";  // procedural | hgt | png16 | r16 | r32f
+  std::string file;                 // for file types (resolved path)
+  int size = 1024;                  // procedural: samples per side
+  uint32_t seed = 1;                // procedural
+  int rawWidth = 0, rawHeight = 0;  // r16 / r32f: dimensions (required)
+  float extent = 1000.0f;           // world units covered along x and z
+  float heightScale = 120.0f;       // procedural: peak height; files: multiplier on stored values
+};
+
+// Deterministic ridged + fBm hybrid (Musgrave) in [0,1], scaled by heightScale. Same seed -> same bits.
+Heightfield makeProcedural(const TerrainSpec& spec);
+// Loads .hgt (SRTM big-endian int16, 1201^2 or 3601^2, voids -32768 filled), 16-bit PNG, raw R16 / R32F.
+// Throws lb::InputError naming the file and the problem.
+Heightfield loadHeightfield(const TerrainSpec& spec);
+// Dispatches on spec.type.
+Heightfield makeHeightfield(const TerrainSpec& spec);
+
+}  // namespace lb

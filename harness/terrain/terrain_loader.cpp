@@ -1,0 +1,184 @@
+// Heightfield files: SRTM .hgt, 16-bit grayscale PNG, raw little-endian R16 / R32F.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "error.h"
+#include "terrain/heightfield.h"
+
+// The one stb_image implementation in the project (image_io.cpp owns stb_image_write's).
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+namespace lb {
+namespace {
+
+constexpr int16_t kHgtVoid = -32768;
+
+std::vector<unsigned char> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open " + path);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path + ": read error");
+  return bytes;
+}
+
+Heightfield emptyField(const TerrainSpec& spec, int w, int h) {
+  Heightfield hf;
+  hf.width = w;
+  hf.height = h;
+  hf.extent = spec.extent;
+  hf.h.resize(size_t(w) * size_t(h));
+  return hf;
+}
+
+// Fills voids breadth-first from the valid samples inwards: each ring takes the mean of its
+// already-known 4-neighbours. Rings are computed from a snapshot so the result does not depend
+// on scan order, and the whole fill is O(samples) however large the voids are.
+void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
+  std::vector<size_t> frontier, next;
+  auto pushVoidNeighbours = [&](size_t i, std::vector<size_t>& out, std::vector<char>& queued) {
+    const int x = int(i % size_t(w)), z = int(i / size_t(w));
+    const int nx[4] = {x - 1, x + 1, x, x}, nz[4] = {z, z, z - 1, z + 1};
+    for (int k = 0; k < 4; ++k) {
+      if (nx[k] < 0 || nx[k] >= w || nz[k] < 0 || nz[k] >= ht) continue;
+      const size_t j = size_t(nz[k]) * size_t(w) + size_t(nx[k]);
+      if (!known[j] && !queued[j]) {
+        queued[j] = 1;
+        out.push_back(j);
+      }
+    }
+  };
+  std::vector<char> queued(h.size(), 0);
+  for (size_t i = 0; i < h.size(); ++i)
+    if (known[i]) pushVoidNeighbours(i, frontier, queued);
+  std::vector<float> ring;
+  while (!frontier.empty()) {
+    ring.assign(frontier.size(), 0.0f);
+    for (size_t k = 0; k < frontier.size(); ++k) {
+      const size_t i = frontier[k];
+      const int x = int(i % size_t(w)), z = int(i / size_t(w));
+      float sum = 0.0f;
+      int count = 0;
+      if (x > 0 && known[i - 1]) sum += h[i - 1], ++count;
+      if (x + 1 < w && known[i + 1]) sum += h[i + 1], ++count;
+      if (z > 0 && known[i - size_t(w)]) sum += h[i - size_t(w)], ++count;
+      if (z + 1 < ht && known[i + size_t(w)]) sum += h[i + size_t(w)], ++count;
+      ring[k] = sum / float(count);  // count >= 1: frontier cells touch a known cell
+    }
+    for (size_t k = 0; k < frontier.size(); ++k) h[frontier[k]] = ring[k], known[frontier[k]] = 1;
+    next.clear();
+    for (size_t i : frontier) pushVoidNeighbours(i, next, queued);
+    frontier.swap(next);
+  }
+}
+
+// SRTM: no header; N x N big-endian int16 metres, first row = north edge, first column = west.
+// Orientation in lodbench: file row r becomes z = r and column c becomes x = c, so +x points east
+// and +z points south (north is at z = 0).
+Heightfield loadHgt(const TerrainSpec& spec) {
+  const std::vector<unsigned char> bytes = readFile(spec.file);
+  int n = 0;
+  for (int candidate : {1201, 3601})
+    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
+  if (n == 0)
+    throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
+                     " bytes is not 1201^2 or 3601^2 int16 samples");
+  Heightfield hf = emptyField(spec, n, n);
+  std::vector<char> known(hf.h.size(), 1);
+  bool anyVoid = false, anyValid = false;
+  for (size_t i = 0; i < hf.h.size(); ++i) {
+    const int16_t m = int16_t(uint16_t(bytes[2 * i] << 8 | bytes[2 * i + 1]));
+    if (m == kHgtVoid) {
+      known[i] = 0;
+      anyVoid = true;
+    } else {
+      hf.h[i] = float(m) * spec.heightScale;
+      anyValid = true;
+    }
+  }
+  if (!anyValid) throw InputError(spec.file + ": every sample is a void (-32768)");
+  // With at least one valid sample the breadth-first fill reaches every void, so no void is
+  // ever isolated and the "minimum valid height" fallback is never needed.
+  if (anyVoid) fillVoids(hf.h, known, n, n);
+  return hf;
+}
+
+Heightfield loadPng16(const TerrainSpec& spec) {
+  const std::vector<unsigned char> bytes = readFile(spec.file);
+  if (bytes.size() > size_t(INT32_MAX)) throw InputError(spec.file + ": file too large for a PNG heightmap");
+  const int len = int(bytes.size());
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp))
+    throw InputError(spec.file + ": cannot decode PNG (" + std::string(stbi_failure_reason()) + ")");
+  if (!stbi_is_16_bit_from_memory(bytes.data(), len) || comp != 1)
+    throw InputError(spec.file + ": not a 16-bit grayscale PNG (found " + std::to_string(comp) + " channel(s), " +
+                     (stbi_is_16_bit_from_memory(bytes.data(), len) ? "16" : "8") + "-bit)");
+  if (w < 2 || h < 2)
+    throw InputError(spec.file + ": " + std::to_string(w) + "x" + std::to_string(h) + " is too small (need 2x2)");
+  stbi_us* pixels = stbi_load_16_from_memory(bytes.data(), len, &w, &h, &comp, 1);
+  if (!pixels) throw InputError(spec.file + ": cannot decode PNG (" + std::string(stbi_failure_reason()) + ")");
+  Heightfield hf = emptyField(spec, w, h);
+  // Divide first so that 65535 maps to exactly heightScale.
+  for (size_t i = 0; i < hf.h.size(); ++i) hf.h[i] = float(pixels[i]) / 65535.0f * spec.heightScale;
+  stbi_image_free(pixels);
+  return hf;
+}
+
+// Raw dumps carry no header, so the user supplies the size and it must match the file exactly.
+Heightfield loadRaw(const TerrainSpec& spec, size_t bytesPerSample) {
+  if (spec.rawWidth < 2 || spec.rawHeight < 2)
+    throw InputError(spec.file + ": " + spec.type + " needs terrain rawWidth and rawHeight > 1 (got " +
+                     std::to_string(spec.rawWidth) + "x" + std::to_string(spec.rawHeight) + ")");
+  const std::vector<unsigned char> bytes = readFile(spec.file);
+  const size_t expected = size_t(spec.rawWidth) * size_t(spec.rawHeight) * bytesPerSample;
+  if (bytes.size() != expected)
+    throw InputError(spec.file + ": expected " + std::to_string(spec.rawWidth) + "*" +
+                     std::to_string(spec.rawHeight) + "*" + std::to_string(bytesPerSample) + " = " +
+                     std::to_string(expected) + " bytes, got " + std::to_string(bytes.size()));
+  Heightfield hf = emptyField(spec, spec.rawWidth, spec.rawHeight);
+  for (size_t i = 0; i < hf.h.size(); ++i) {
+    const unsigned char* p = &bytes[i * bytesPerSample];
+    if (bytesPerSample == 2) {
+      hf.h[i] = float(uint16_t(p[0] | p[1] << 8)) * spec.heightScale;
+    } else {
+      const uint32_t u = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+      float v;
+      std::memcpy(&v, &u, sizeof v);
+      if (!std::isfinite(v))
+        throw InputError(spec.file + ": sample (" + std::to_string(i % size_t(spec.rawWidth)) + ", " +
+                         std::to_string(i / size_t(spec.rawWidth)) + ") is not a finite number");
+      hf.h[i] = v * spec.heightScale;
+    }
+  }
+  return hf;
+}
+
+}  // namespace
+
+Heightfield loadHeightfield(const TerrainSpec& spec) {
+  if (spec.file.empty()) throw InputError("terrain: type '" + spec.type + "' needs a file");
+  if (!(std::isfinite(spec.extent) && spec.extent > 0.0f))
+    throw InputError(spec.file + ": terrain extent " + std::to_string(spec.extent) + " must be positive and finite");
+  if (!(std::isfinite(spec.heightScale) && spec.heightScale > 0.0f))
+    throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) +
+                     " must be positive and finite");
+  Heightfield hf;
+  if (spec.type == "hgt")
+    hf = loadHgt(spec);
+  else if (spec.type == "png16")
+    hf = loadPng16(spec);
+  else if (spec.type == "r16")
+    hf = loadRaw(spec, 2);
+  else if (spec.type == "r32f")
+    hf = loadRaw(spec, 4);
+  else
+    throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f)");
+  hf.updateRange();
+  return hf;
+}
+
+}  // namespace lb

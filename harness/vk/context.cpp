@@ -1,0 +1,260 @@
+#include "vk/context.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "vk/vk_check.h"
+
+namespace lb {
+
+const char* vkResultName(VkResult r) {
+  switch (r) {
+#define LB_CASE(x) \
+  case x:          \
+    return #x;
+    LB_CASE(VK_SUCCESS) LB_CASE(VK_NOT_READY) LB_CASE(VK_TIMEOUT) LB_CASE(VK_INCOMPLETE)
+    LB_CASE(VK_ERROR_OUT_OF_HOST_MEMORY) LB_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    LB_CASE(VK_ERROR_INITIALIZATION_FAILED) LB_CASE(VK_ERROR_DEVICE_LOST)
+    LB_CASE(VK_ERROR_MEMORY_MAP_FAILED) LB_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+    LB_CASE(VK_ERROR_EXTENSION_NOT_PRESENT) LB_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+    LB_CASE(VK_ERROR_INCOMPATIBLE_DRIVER) LB_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+    LB_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED) LB_CASE(VK_ERROR_UNKNOWN)
+#undef LB_CASE
+    default:
+      return "VK_ERROR_(unnamed)";
+  }
+}
+
+void vkFail(VkResult r, const char* call, const char* file, int line) {
+  char msg[512];
+  std::snprintf(msg, sizeof msg, "%s:%d: %s failed with %s", file, line, call, vkResultName(r));
+  throw std::runtime_error(msg);
+}
+
+std::string apiVersionString(uint32_t v) {
+  return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+         std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+std::string driverVersionString(const VkPhysicalDeviceProperties& p) {
+  uint32_t v = p.driverVersion;
+  if (p.vendorID == 0x10DE)  // NVIDIA packs 10.8.8.6 bits
+    return std::to_string(v >> 22) + "." + std::to_string((v >> 14) & 0xff) + "." + std::to_string((v >> 6) & 0xff);
+  return apiVersionString(v);
+}
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                    VkDebugUtilsMessageTypeFlagsEXT,
+                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  auto* ctx = static_cast<Context*>(user);
+  if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+    ctx->validationErrors++;
+    std::fprintf(stderr, "[validation error] %s\n", data->pMessage);
+  } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    ctx->validationWarnings++;
+    std::fprintf(stderr, "[validation warning] %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+static bool hasLayer(const char* name) {
+  uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (auto& l : layers)
+    if (std::strcmp(l.layerName, name) == 0) return true;
+  return false;
+}
+
+static VkInstance makeInstance(bool validation, bool* debugUtils) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "lodbench";
+  app.apiVersion = VK_API_VERSION_1_3;
+  std::vector<const char*> layers, exts;
+  if (validation) {
+    layers.push_back("VK_LAYER_KHRONOS_validation");
+    exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pApplicationInfo = &app;
+  ci.enabledLayerCount = uint32_t(layers.size());
+  ci.ppEnabledLayerNames = layers.data();
+  ci.enabledExtensionCount = uint32_t(exts.size());
+  ci.ppEnabledExtensionNames = exts.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&ci, nullptr, &instance);
+  if (r != VK_SUCCESS)
+    throw std::runtime_error(std::string("vkCreateInstance failed (") + vkResultName(r) +
+                             "): is a Vulkan driver installed? On Debian: apt-get install mesa-vulkan-drivers");
+  *debugUtils = validation;
+  return instance;
+}
+
+static int graphicsQueueFamily(VkPhysicalDevice pd) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> fams(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, fams.data());
+  for (uint32_t i = 0; i < n; ++i)
+    if ((fams[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (fams[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+        fams[i].timestampValidBits > 0)
+      return int(i);
+  return -1;
+}
+
+static std::vector<DeviceCandidate> examine(VkInstance instance, std::vector<VkPhysicalDevice>& out) {
+  uint32_t n = 0;
+  vkEnumeratePhysicalDevices(instance, &n, nullptr);
+  out.resize(n);
+  vkEnumeratePhysicalDevices(instance, &n, out.data());
+  std::vector<DeviceCandidate> result;
+  for (uint32_t i = 0; i < n; ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(out[i], &p);
+    VkPhysicalDeviceFeatures f;
+    vkGetPhysicalDeviceFeatures(out[i], &f);
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
+    if (p.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(out[i], &f2);
+    DeviceCandidate c{int(i), p.deviceName, false, ""};
+    if (p.apiVersion < VK_API_VERSION_1_3)
+      c.rejectReason = "Vulkan " + apiVersionString(p.apiVersion) + " < 1.3 (needs dynamic rendering)";
+    else if (!f.tessellationShader)
+      c.rejectReason = "no tessellationShader feature";
+    else if (!f.pipelineStatisticsQuery)
+      c.rejectReason = "no pipelineStatisticsQuery feature (triangle counts)";
+    else if (!f13.dynamicRendering)
+      c.rejectReason = "no dynamicRendering feature";
+    else if (!p.limits.timestampComputeAndGraphics)
+      c.rejectReason = "timestamps not supported on graphics queues";
+    else if (graphicsQueueFamily(out[i]) < 0)
+      c.rejectReason = "no graphics+compute queue with timestamps";
+    else if (p.limits.maxTessellationGenerationLevel < 64)
+      c.rejectReason = "maxTessellationGenerationLevel " + std::to_string(p.limits.maxTessellationGenerationLevel) + " < 64";
+    c.suitable = c.rejectReason.empty();
+    result.push_back(c);
+  }
+  return result;
+}
+
+std::vector<DeviceCandidate> listDevices() {
+  bool du = false;
+  VkInstance inst = makeInstance(false, &du);
+  std::vector<VkPhysicalDevice> pds;
+  auto c = examine(inst, pds);
+  vkDestroyInstance(inst, nullptr);
+  return c;
+}
+
+static int choose(const std::vector<DeviceCandidate>& cands, const std::string& want, std::string& why) {
+  auto lower = [](std::string s) {
+    for (auto& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+  };
+  bool isIndex = !want.empty() && want.find_first_not_of("0123456789") == std::string::npos;
+  for (auto& c : cands) {
+    bool match = want.empty() ? lower(c.name).find("llvmpipe") != std::string::npos
+                 : isIndex    ? c.index == std::stoi(want)
+                              : lower(c.name).find(lower(want)) != std::string::npos;
+    if (match && c.suitable) return c.index;
+  }
+  if (want.empty())
+    for (auto& c : cands)
+      if (c.suitable) return c.index;
+  why = want.empty() ? "no suitable Vulkan device" : "no suitable Vulkan device matches --device '" + want + "'";
+  for (auto& c : cands)
+    why += "\n  [" + std::to_string(c.index) + "] " + c.name + ": " + (c.suitable ? "suitable" : c.rejectReason);
+  if (cands.empty()) why += " (no devices at all: apt-get install mesa-vulkan-drivers for lavapipe)";
+  return -1;
+}
+
+void createContext(Context& ctx, const ContextOptions& options) {
+  const char* env = std::getenv("LODBENCH_VALIDATION");
+  bool validation = options.validation || (env && std::strcmp(env, "0") != 0 && *env);
+  if (validation && !hasLayer("VK_LAYER_KHRONOS_validation")) {
+    std::fprintf(stderr, "warning: validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                         "(apt-get install vulkan-validationlayers)\n");
+    validation = false;
+  }
+  bool debugUtils = false;
+  ctx.instance = makeInstance(validation, &debugUtils);
+  ctx.validationEnabled = validation;
+  if (debugUtils) {
+    VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+    mi.pfnUserCallback = debugCallback;
+    mi.pUserData = &ctx;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (create) VK_CHECK(create(ctx.instance, &mi, nullptr, &ctx.messenger));
+  }
+  std::vector<VkPhysicalDevice> pds;
+  ctx.candidates = examine(ctx.instance, pds);
+  std::string why;
+  int idx = choose(ctx.candidates, options.device, why);
+  if (idx < 0) {
+    destroyContext(ctx);
+    throw std::runtime_error(why);
+  }
+  ctx.physicalDevice = pds[size_t(idx)];
+  vkGetPhysicalDeviceProperties(ctx.physicalDevice, &ctx.props);
+  vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memProps);
+  VkPhysicalDeviceDriverProperties drv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &drv};
+  vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &p2);
+  ctx.driverName = drv.driverName;
+  ctx.driverInfo = drv.driverInfo;
+
+  VkPhysicalDeviceFeatures have;
+  vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &have);
+  ctx.enabledFeatures.tessellationShader = VK_TRUE;
+  ctx.enabledFeatures.pipelineStatisticsQuery = VK_TRUE;
+  ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;  // wireframe images only
+  ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
+  ctx.enabledFeatures.geometryShader = have.geometryShader;  // measurement passes only
+
+  ctx.queueFamily = uint32_t(graphicsQueueFamily(ctx.physicalDevice));
+  float prio = 1.0f;
+  VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qi.queueFamilyIndex = ctx.queueFamily;
+  qi.queueCount = 1;
+  qi.pQueuePriorities = &prio;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.dynamicRendering = VK_TRUE;
+  f13.synchronization2 = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+  f12.hostQueryReset = VK_TRUE;
+  VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f12};
+  di.queueCreateInfoCount = 1;
+  di.pQueueCreateInfos = &qi;
+  di.pEnabledFeatures = &ctx.enabledFeatures;
+  VK_CHECK(vkCreateDevice(ctx.physicalDevice, &di, nullptr, &ctx.device));
+  vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pi.queueFamilyIndex = ctx.queueFamily;
+  VK_CHECK(vkCreateCommandPool(ctx.device, &pi, nullptr, &ctx.commandPool));
+}
+
+void destroyContext(Context& ctx) {
+  if (ctx.device) {
+    vkDeviceWaitIdle(ctx.device);
+    vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
+    vkDestroyDevice(ctx.device, nullptr);
+  }
+  if (ctx.messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(ctx.instance, ctx.messenger, nullptr);
+  }
+  if (ctx.instance) vkDestroyInstance(ctx.instance, nullptr);
+  ctx.device = VK_NULL_HANDLE;
+  ctx.messenger = VK_NULL_HANDLE;
+  ctx.instance = VK_NULL_HANDLE;
+}
+
+}  // namespace lb

@@ -1,0 +1,51 @@
+#pragma once
+// Headless Vulkan: instance (optional validation layer), device chosen by name substring or
+// index, one graphics+compute queue. No surface, no swapchain.
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace lb {
+
+struct ContextOptions {
+  std::string device;       // "" = lavapipe if present else first suitable; digits = index
+  bool validation = false;  // enable VK_LAYER_KHRONOS_validation (also env LODBENCH_VALIDATION=1)
+};
+
+struct DeviceCandidate {
+  int index = 0;
+  std::string name;
+  bool suitable = false;
+  std::string rejectReason;  // empty when suitable
+};
+
+struct Context {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkCommandPool commandPool = VK_NULL_HANDLE;  // for one-shot uploads
+  VkPhysicalDeviceProperties props{};
+  VkPhysicalDeviceMemoryProperties memProps{};
+  VkPhysicalDeviceFeatures enabledFeatures{};
+  std::string driverName, driverInfo;
+  bool validationEnabled = false;
+  std::vector<DeviceCandidate> candidates;
+  // Count of validation messages of severity error (and warnings), for tests to assert zero.
+  std::atomic<int> validationErrors{0};
+  std::atomic<int> validationWarnings{0};
+};
+
+// Throws std::runtime_error with every device's rejection reason when none fits.
+void createContext(Context& ctx, const ContextOptions& options);
+void destroyContext(Context& ctx);
+// Lists devices and whether each is suitable (creates and destroys its own instance).
+std::vector<DeviceCandidate> listDevices();
+std::string apiVersionString(uint32_t v);
+std::string driverVersionString(const VkPhysicalDeviceProperties& props);
+
+}  // namespace lb

@@ -1,0 +1,29 @@
+#include "schemes/registry.h"
+
+namespace lb {
+
+// Each scheme file defines one factory; adding a scheme = one line here.
+const Scheme& uniformScheme();
+const Scheme& sphereScheme();
+
+const std::vector<const Scheme*>& allSchemes() {
+  static const std::vector<const Scheme*> schemes = {
+      &uniformScheme(),
+      &sphereScheme(),
+  };
+  return schemes;
+}
+
+const Scheme* findScheme(const std::string& name) {
+  for (const Scheme* s : allSchemes())
+    if (s->info().name == name) return s;
+  return nullptr;
+}
+
+std::string schemeNames() {
+  std::string out;
+  for (const Scheme* s : allSchemes()) out += (out.empty() ? "" : ", ") + s->info().name;
+  return out;
+}
+
+}  // namespace lb

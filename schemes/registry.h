@@ -1,0 +1,16 @@
+#pragma once
+// The one explicit table of LOD schemes. The CLI, tests and benchmarks all iterate it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/scheme.h"
+
+namespace lb {
+
+const std::vector<const Scheme*>& allSchemes();
+// nullptr when unknown.
+const Scheme* findScheme(const std::string& name);
+std::string schemeNames();  // "a, b, c" for error messages
+
+}  // namespace lb

@@ -1,0 +1,35 @@
+// NVIDIA, "DirectX 11 Terrain Tessellation" (Cantlay 2011): "Hull Shader: Tessellation LOD" and
+// "Crack-Free Tessellation". Uniform patch size; per edge, the screen-space diameter of a sphere
+// around the displaced edge divided by the target triangle width; per-patch frustum culling;
+// fractional_even partitioning. Shader: shaders/sphere.tesc.
+#include "render/scheme.h"
+
+namespace lb {
+namespace {
+
+class Sphere : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "sphere",
+        "screen-space projected edge sphere / target triangle width",
+        "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD; Crack-Free Tessellation",
+        {{"tri_size", 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"}},
+        Topology::Quad4,
+        Partitioning::FractionalEven,
+        "sphere",
+        "terrain_quad",
+        true,
+    };
+    return kInfo;
+  }
+};
+
+}  // namespace
+
+const Scheme& sphereScheme() {
+  static const Sphere scheme;
+  return scheme;
+}
+
+}  // namespace lb

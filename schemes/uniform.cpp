@@ -1,0 +1,31 @@
+// Baseline: one fixed integer tessellation level for every patch edge and interior.
+#include "render/scheme.h"
+
+namespace lb {
+namespace {
+
+class Uniform : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "uniform",
+        "one fixed tessellation level everywhere",
+        "baseline",
+        {{"level", 8, 1, 64, true, "tessellation level of every edge and interior"}},
+        Topology::Quad4,
+        Partitioning::Integer,
+        "uniform",
+    };
+    return kInfo;
+  }
+  float maxLevel(const ParamValues& v) const override { return float(v.at("level")); }
+};
+
+}  // namespace
+
+const Scheme& uniformScheme() {
+  static const Uniform scheme;
+  return scheme;
+}
+
+}  // namespace lb

@@ -1,0 +1,58 @@
+// Constants and the frame uniform block, shared by C++ and GLSL (one source of truth).
+#ifndef LODBENCH_SHARED_H
+#define LODBENCH_SHARED_H
+
+#define LB_BINDING_FRAME 0      // FrameUniforms, dynamic uniform buffer
+#define LB_BINDING_HEIGHT 1     // heightfield, R32F, read with texelFetch
+#define LB_BINDING_SCHEME_TEX 2 // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
+#define LB_BINDING_PATCH_BOUNDS 3  // per-patch (minHeight, maxHeight) for culling
+#define LB_BINDING_CAPTURE 4    // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
+#define LB_BINDING_SCHEME_BUF 5 // scheme storage buffer (e.g. tile adjacency)
+
+#define LB_MAX_FACTOR 64.0
+#define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer
+#define LB_SCHEME_PARAM_VEC4S 4 // up to 16 scheme parameters, in declaration order
+
+#define LB_MODE_SHADED 0
+#define LB_MODE_HEATMAP 1
+#define LB_MODE_WIREFRAME 2
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace lb {
+// std140: every member is a vec4 or mat4, so the C++ layout matches without padding rules.
+struct FrameUniforms {
+  glm::mat4 viewProj;   // projection camera
+  glm::mat4 lodView;    // LOD camera (equals the projection camera except in popping passes)
+  glm::mat4 lodProj;
+  glm::vec4 lodEye;     // xyz: LOD camera position
+  glm::vec4 frustum[6]; // LOD camera frustum planes (xyz normal pointing inside, w), world space
+  glm::vec4 viewport;   // width, height, 1/width, 1/height in pixels
+  glm::vec4 terrain;    // extent, grid patches per side, heightfield width, heightfield height
+  glm::vec4 light;      // xyz: direction towards the light
+  glm::vec4 params[LB_SCHEME_PARAM_VEC4S];
+};
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16, "std140 mirror");
+struct DrawPush {
+  uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw
+  uint32_t pad[3];
+};
+}  // namespace lb
+#else
+layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
+  mat4 viewProj;
+  mat4 lodView;
+  mat4 lodProj;
+  vec4 lodEye;
+  vec4 frustum[6];
+  vec4 viewport;
+  vec4 terrain;
+  vec4 light;
+  vec4 params[LB_SCHEME_PARAM_VEC4S];
+} frame;
+layout(push_constant) uniform DrawPush {
+  uint firstPatch;
+} draw;
+#endif
+
+#endif

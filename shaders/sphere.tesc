@@ -1,0 +1,43 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// NVIDIA "DirectX 11 Terrain Tessellation" (Cantlay 2011), "Hull Shader: Tessellation LOD" and
+// "Crack-Free Tessellation": per edge, a sphere around the displaced edge is projected to the
+// screen; factor = projected diameter / g_tessellatedTriSize. Edge factors depend only on the
+// edge's two end points, so neighbours agree. Patches outside the frustum get factor 0 (culled).
+#include "common.glsl"
+#include "tesc_common.glsl"
+
+// SphereToScreenSpaceTessellation: diameter of the edge's bounding sphere in pixels / tri size.
+float sphereToScreenSpaceTessellation(vec3 p0, vec3 p1, float diameter) {
+  vec3 centre = 0.5 * (p0 + p1);
+  vec4 view0 = frame.lodView * vec4(centre, 1.0);
+  vec4 view1 = view0;
+  view1.x += diameter;
+  vec4 clip0 = frame.lodProj * view0;
+  vec4 clip1 = frame.lodProj * view1;
+  clip0 /= clip0.w;
+  clip1 /= clip1.w;
+  clip0.xy *= frame.viewport.xy;  // NDC spans 2 units: this gives twice the pixel distance
+  clip1.xy *= frame.viewport.xy;
+  float projectedDiameterPx = 0.5 * distance(clip0.xy, clip1.xy);
+  return clamp(projectedDiameterPx / schemeParam(0), 1.0, LB_MAX_FACTOR);  // tri_size
+}
+
+float edgeLevel(vec3 p0, vec3 p1) {
+  // Behind the LOD camera the projection is meaningless; the patch is culled or partly visible.
+  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1));
+}
+
+void main() {
+  passThrough();
+  if (gl_InvocationID != 0) return;
+  if (patchCulled()) {
+    writeLevels(vec4(0.0), vec2(0.0));
+    return;
+  }
+  vec4 outer = vec4(edgeLevel(inPos[0], inPos[3]), edgeLevel(inPos[0], inPos[1]),
+                    edgeLevel(inPos[1], inPos[2]), edgeLevel(inPos[3], inPos[2]));
+  // Inner factors follow the edges parallel to each domain direction.
+  vec2 inner = vec2(max(outer.y, outer.w), max(outer.x, outer.z));
+  writeLevels(outer, inner);
+}

@@ -1,0 +1,31 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Identical shading for every scheme: per-pixel normals from the heightfield, one directional light.
+#include "common.glsl"
+
+layout(constant_id = 0) const int kMode = LB_MODE_SHADED;
+layout(location = 0) in vec3 inWorld;
+layout(location = 1) in float inLevel;
+layout(location = 0) out vec4 outColor;
+
+vec3 heat(float level) {
+  // log2 scale: 1 -> blue, 8 -> green, 64 -> red
+  float t = clamp(log2(max(level, 1.0)) / 6.0, 0.0, 1.0);
+  return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
+}
+
+void main() {
+  vec3 n = terrainNormal(inWorld.xz);
+  float diffuse = max(dot(n, normalize(frame.light.xyz)), 0.0);
+  float shade = 0.25 + 0.75 * diffuse;
+  vec3 base;
+  if (kMode == LB_MODE_SHADED) {
+    float slope = 1.0 - n.y;
+    base = mix(vec3(0.36, 0.45, 0.25), vec3(0.45, 0.40, 0.35), smoothstep(0.15, 0.35, slope));
+  } else {
+    base = heat(inLevel);
+  }
+  vec3 c = kMode == LB_MODE_WIREFRAME ? base : base * shade;
+  // The clear colour is pure magenta; keep every terrain pixel visibly off it (crack detection).
+  outColor = vec4(c.r, max(c.g, 0.02), c.b, 1.0);
+}

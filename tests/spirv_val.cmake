@@ -1,0 +1,13 @@
+# Runs spirv-val over every compiled shader; fails if any is invalid or none exist.
+file(GLOB spvs ${DIR}/*.spv)
+list(LENGTH spvs n)
+if(n EQUAL 0)
+  message(FATAL_ERROR "no SPIR-V files in ${DIR}")
+endif()
+foreach(f ${spvs})
+  execute_process(COMMAND ${SPIRV_VAL} --target-env vulkan1.2 ${f} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "spirv-val failed on ${f}: ${out}")
+  endif()
+endforeach()
+message(STATUS "spirv-val: ${n} modules valid")
