@@ -165,8 +165,12 @@ TEST(Terrain, ProceduralRejectsBadSpec) {
   s.extent = 0.0f;
   EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(s); }).find("extent"), std::string::npos);
   s.extent = 100.0f;
-  s.heightScale = NAN;
-  EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(s); }).find("heightScale"), std::string::npos);
+  for (float bad : {NAN, -1.0f}) {
+    s.heightScale = bad;
+    EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(s); }).find("heightScale"), std::string::npos);
+  }
+  s.heightScale = 0.0f;  // a flat plane is allowed
+  EXPECT_EQ(lb::makeProcedural(s).maxHeight, 0.0f);
 }
 
 TEST(Terrain, SampleAtGridPointsEqualsAt) {

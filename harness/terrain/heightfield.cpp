@@ -160,9 +160,10 @@ float hybridMultifractal(float x, float z, const Octave* oct) {
   return uplift * kUpliftScale + ridged * ridged + detail * ridged;
 }
 
-void requireFinitePositive(float v, const char* what) {
-  if (!(std::isfinite(v) && v > 0.0f))
-    throw InputError("terrain: " + std::string(what) + " " + std::to_string(v) + " must be a positive finite number");
+void requireFinite(float v, const char* what, bool allowZero) {
+  if (!(std::isfinite(v) && (v > 0.0f || (allowZero && v == 0.0f))))
+    throw InputError("terrain: " + std::string(what) + " " + std::to_string(v) + " must be a finite number " +
+                     (allowZero ? ">= 0" : "> 0"));
 }
 
 }  // namespace
@@ -171,8 +172,8 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
   if (spec.size < kMinSize || spec.size > kMaxSize)
     throw InputError("terrain: procedural size " + std::to_string(spec.size) + " is outside [" +
                      std::to_string(kMinSize) + ", " + std::to_string(kMaxSize) + "]");
-  requireFinitePositive(spec.extent, "extent");
-  requireFinitePositive(spec.heightScale, "heightScale");
+  requireFinite(spec.extent, "extent", false);
+  requireFinite(spec.heightScale, "heightScale", true);  // 0 gives a flat plane, a valid baseline
 
   Octave oct[kOctaves];
   float amplitude = 1.0f;

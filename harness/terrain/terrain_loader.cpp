@@ -163,9 +163,8 @@ Heightfield loadHeightfield(const TerrainSpec& spec) {
   if (spec.file.empty()) throw InputError("terrain: type '" + spec.type + "' needs a file");
   if (!(std::isfinite(spec.extent) && spec.extent > 0.0f))
     throw InputError(spec.file + ": terrain extent " + std::to_string(spec.extent) + " must be positive and finite");
-  if (!(std::isfinite(spec.heightScale) && spec.heightScale > 0.0f))
-    throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) +
-                     " must be positive and finite");
+  if (!(std::isfinite(spec.heightScale) && spec.heightScale >= 0.0f))
+    throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) + " must be finite and >= 0");
   Heightfield hf;
   if (spec.type == "hgt")
     hf = loadHgt(spec);
