@@ -35,9 +35,7 @@ class Interlock : public Scheme {
     };
     return kInfo;
   }
-  float maxLevel(const ParamValues& v) const override {
-    return float(std::max(v.at("min_lod"), v.at("max_lod")));
-  }
+  float maxLevel(const ParamValues& v) const override { return float(std::max(v.at("min_lod"), v.at("max_lod"))); }
 };
 
 }  // namespace
