@@ -115,7 +115,7 @@ void Renderer::createGrid() {
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memset(capture_.mapped, 0, size_t(capture_.size));
   uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->info().partitioning);
-  patchesPerDraw_ = std::max(1u, kMaxVerticesPerDraw / perPatch);
+  patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));
 }
 
 void Renderer::createDescriptors() {
