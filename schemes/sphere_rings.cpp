@@ -9,7 +9,11 @@
 // counters identical for any path, needs no per-frame renderer hook, and still shows every
 // boundary effect (cameras far from the centre see coarse rings near them: a known limitation).
 // Patches entirely outside the terrain are dropped; those overlapping its border sample the
-// clamped heightfield, as terrainHeight() does.
+// clamped heightfield, as terrainHeight() does. The sample uses 16x16-tile rings; 8x8 keeps the
+// patch count lavapipe-sized (4096 + 3072 per further ring) with the same boundary structure.
+// Corners lie on a lattice of extent / 2^k when tile_size is 0 or 1/2^n, so for round extents
+// (1000) the shader's reconstruction p0 + (p0 - p1) of a larger neighbour's corner is bit-exact;
+// otherwise it can be an ulp off, the seed's first caveat under "Advisability".
 #include <cmath>
 #include <map>
 #include <utility>
@@ -62,8 +66,8 @@ class SphereRings : public Scheme {
   PatchGeometry patchGeometry(const Heightfield& hf, const ParamValues& v) const override {
     const int rings = int(v.at("rings"));
     // Fit: ring r spans kRingTiles * tile * 2^r; the outermost one spans the extent.
-    double tile0 = v.at("tile_size") > 0 ? v.at("tile_size") * hf.extent
-                                         : hf.extent / (kRingTiles * std::ldexp(1.0, rings - 1));
+    double tile0 =
+        v.at("tile_size") > 0 ? v.at("tile_size") * hf.extent : hf.extent / (kRingTiles * std::ldexp(1.0, rings - 1));
     if (tile0 < hf.extent / 4096.0) throw InputError("sphere-rings: tile_size must be 0 (fit) or >= 1/4096");
     // Corners on a lattice of the finest patch size, centred on the terrain: shared corners get
     // one vertex, so neighbours see bit-identical end points.

@@ -17,7 +17,9 @@ namespace {
 
 constexpr int kFloatsPerPatch = 8;  // RingPatch: adjacency[4], patch x, patch z, ring, patch size
 
-const Scheme& rings() { return *findScheme("sphere-rings"); }
+const Scheme& rings() {
+  return *findScheme("sphere-rings");
+}
 
 PatchGeometry layout(const ParamValues& given) {
   return rings().patchGeometry(testTerrain(), resolveParams(rings().info(), given));
@@ -36,10 +38,14 @@ Rect patchRect(const PatchGeometry& g, size_t p) {
 using Edge = std::tuple<int, float, float, float>;
 Edge side(const Rect& r, int s) {
   switch (s) {
-    case 0: return {1, r.x0, r.z0, r.z1};
-    case 1: return {0, r.z0, r.x0, r.x1};
-    case 2: return {1, r.x1, r.z0, r.z1};
-    default: return {0, r.z1, r.x0, r.x1};
+    case 0:
+      return {1, r.x0, r.z0, r.z1};
+    case 1:
+      return {0, r.z0, r.x0, r.x1};
+    case 2:
+      return {1, r.x1, r.z0, r.z1};
+    default:
+      return {0, r.z1, r.x0, r.x1};
   }
 }
 
@@ -140,8 +146,10 @@ TEST(SphereRingsLayout, PatchCountsTileSizesAndAdjacencyScalars) {
       area += size * size;
       ASSERT_TRUE(rp[4] >= 0 && rp[4] < 8 && rp[5] >= 0 && rp[5] < 8);
       bool border[4] = {rp[4] == 0, rp[5] == 0, rp[4] == 7, rp[5] == 7};
-      float across[4][2] = {{r.x0 - float(size) / 4, 0.5f * (r.z0 + r.z1)}, {0.5f * (r.x0 + r.x1), r.z0 - float(size) / 4},
-                            {r.x1 + float(size) / 4, 0.5f * (r.z0 + r.z1)}, {0.5f * (r.x0 + r.x1), r.z1 + float(size) / 4}};
+      float across[4][2] = {{r.x0 - float(size) / 4, 0.5f * (r.z0 + r.z1)},
+                            {0.5f * (r.x0 + r.x1), r.z0 - float(size) / 4},
+                            {r.x1 + float(size) / 4, 0.5f * (r.z0 + r.z1)},
+                            {0.5f * (r.x0 + r.x1), r.z1 + float(size) / 4}};
       for (int s = 0; s < 4; ++s) {
         float adj = rp[s];
         EXPECT_TRUE(adj == 0.5f || adj == 1.0f || adj == 2.0f) << adj;
@@ -259,7 +267,8 @@ TEST_F(SphereRingsGpu, EqualSizeNeighboursShareLevels) {
     for (int s = 0; s < 4; ++s) {
       auto [it, added] = first.try_emplace(side(patchRect(g, p), s), p, s);
       if (added) continue;
-      EXPECT_EQ(lv[p * LB_CAPTURE_STRIDE + size_t(s)], lv[it->second.first * LB_CAPTURE_STRIDE + size_t(it->second.second)]);
+      EXPECT_EQ(lv[p * LB_CAPTURE_STRIDE + size_t(s)],
+                lv[it->second.first * LB_CAPTURE_STRIDE + size_t(it->second.second)]);
       ++compared;
     }
   }
