@@ -6,12 +6,14 @@ namespace lb {
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
 const Scheme& interlockScheme();
+const Scheme& sphereRingsScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),
       &sphereScheme(),
       &interlockScheme(),
+      &sphereRingsScheme(),
   };
   return schemes;
 }
