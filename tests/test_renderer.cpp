@@ -24,7 +24,9 @@ TEST_P(Counters, UniformLevelIsExact) {
   EXPECT_EQ(f.stats.tesInvocations, n2 * (l + 1) * (l + 1));
   EXPECT_EQ(f.stats.clipInvocations, 2 * n2 * l * l);
   // 16 patches at level 63 or 64 exceed 65,535 vertices: the split path is exercised.
-  if (n2 * (l + 1) * (l + 1) > kMaxVerticesPerDraw) EXPECT_GT(r.drawCount(), 1u);
+  if (n2 * (l + 1) * (l + 1) > kMaxVerticesPerDraw) {
+    EXPECT_GT(r.drawCount(), 1u);
+  }
 }
 INSTANTIATE_TEST_SUITE_P(Levels, Counters, ::testing::Values(1, 2, 7, 16, 33, 63, 64));
 
