@@ -8,6 +8,7 @@
 #define LB_BINDING_PATCH_BOUNDS 3  // per-patch (minHeight, maxHeight) for culling
 #define LB_BINDING_CAPTURE 4    // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
 #define LB_BINDING_SCHEME_BUF 5 // scheme storage buffer (e.g. tile adjacency)
+#define LB_BINDING_HISTOGRAM 7  // triangle-size histogram (measurement pass)
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer
@@ -16,6 +17,15 @@
 #define LB_MODE_SHADED 0
 #define LB_MODE_HEATMAP 1
 #define LB_MODE_WIREFRAME 2
+#define LB_MODE_ERROR 3         // R32F target: screen-space geometric error in pixels
+
+// Triangle-size histogram: bin 0 is area < 1/8 px, bin k (1..13) is [2^(k-4), 2^(k-3)) px,
+// bin 14 is >= 1024 px; then off-screen (outside the frustum or crossing the near plane) and
+// back-facing triangles, which are not binned.
+#define LB_HIST_BINS 15
+#define LB_HIST_OFFSCREEN 15
+#define LB_HIST_BACKFACING 16
+#define LB_HIST_COUNTERS 17
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>

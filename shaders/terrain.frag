@@ -14,7 +14,18 @@ vec3 heat(float level) {
   return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
 }
 
+vec2 toPixels(vec3 world) {
+  vec4 c = frame.viewProj * vec4(world, 1.0);
+  return c.xy / c.w * 0.5 * frame.viewport.xy;
+}
+
 void main() {
+  if (kMode == LB_MODE_ERROR) {
+    // Vertical distance between the tessellated surface and the true heightfield, in pixels.
+    vec3 truePoint = vec3(inWorld.x, terrainHeight(inWorld.xz), inWorld.z);
+    outColor = vec4(distance(toPixels(inWorld), toPixels(truePoint)), 0.0, 0.0, 1.0);
+    return;
+  }
   vec3 n = terrainNormal(inWorld.xz);
   float diffuse = max(dot(n, normalize(frame.light.xyz)), 0.0);
   float shade = 0.25 + 0.75 * diffuse;

@@ -72,8 +72,9 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   uint32_t q0 = uint32_t(slotIndex) * kTimestampsPerSlot;
   vkCmdResetQueryPool(cmd, timestamps_, q0, kTimestampsPerSlot);
   vkCmdResetQueryPool(cmd, stats_, uint32_t(slotIndex), 1);
+  const Image& target = mode == RenderMode::Error ? errorTarget_ : color_;
   // Earlier frames may still write these targets: order after them, discard old contents.
-  imageBarrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+  imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
@@ -85,11 +86,12 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
                VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
   VkRenderingAttachmentInfo ca{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  ca.imageView = color_.view;
+  ca.imageView = target.view;
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   ca.clearValue.color = {{1.0f, 0.0f, 1.0f, 1.0f}};  // magenta: no terrain pixel has it
+  if (mode == RenderMode::Error) ca.clearValue.color = {{-1.0f, 0.0f, 0.0f, 0.0f}};  // error is never negative
   VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   da.imageView = depth_.view;
   da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -124,17 +126,17 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   vkCmdEndQuery(cmd, stats_, uint32_t(slotIndex));
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps_, q0 + kQueryBottom);
   if (slot.readback) {
-    imageBarrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+    imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {uint32_t(settings_.width), uint32_t(settings_.height), 1};
-    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &region);
+    vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &region);
   }
-  if (capture) {
+  if (capture || mode == RenderMode::Histogram) {
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    mb.srcStageMask = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
     mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
     mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
@@ -232,6 +234,34 @@ std::vector<uint8_t> Renderer::renderImage(const CameraPose& view, const CameraP
   if (result && !done.empty()) *result = done.back();
   const auto* p = static_cast<const uint8_t*>(readback_.mapped);
   return std::vector<uint8_t>(p, p + readback_.size);
+}
+
+uint64_t TriangleHistogram::total() const {
+  uint64_t t = offscreen + backfacing;
+  for (uint64_t b : bins) t += b;
+  return t;
+}
+
+TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
+  finish();
+  std::memset(histogram_.mapped, 0, size_t(histogram_.size));
+  submitFrame(-1, view, lod, RenderMode::Histogram);
+  finish();
+  auto done = takeCompleted();
+  if (result && !done.empty()) *result = done.back();
+  const auto* c = static_cast<const uint32_t*>(histogram_.mapped);
+  TriangleHistogram h;
+  for (int i = 0; i < LB_HIST_BINS; ++i) h.bins[size_t(i)] = c[i];
+  h.offscreen = c[LB_HIST_OFFSCREEN];
+  h.backfacing = c[LB_HIST_BACKFACING];
+  return h;
+}
+
+std::vector<float> Renderer::renderErrorMap(const CameraPose& view, const CameraPose& lod) {
+  std::vector<uint8_t> bytes = renderImage(view, lod, RenderMode::Error);
+  std::vector<float> px(bytes.size() / sizeof(float));
+  std::memcpy(px.data(), bytes.data(), px.size() * sizeof(float));
+  return px;
 }
 
 std::vector<float> Renderer::capturedLevels() {

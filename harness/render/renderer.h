@@ -19,7 +19,16 @@ struct Context;
 struct Heightfield;
 struct CameraPose;
 
-enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2 };
+// Shaded/Heatmap/Wireframe write RGBA8; Error writes per-pixel screen-space error (R32F, -1 where
+// no terrain); Histogram bins triangle areas in a geometry shader and rasterizes nothing.
+enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2, Error = 3, Histogram = 4 };
+
+// Triangle counts by screen-space area (see LB_HIST_* in shaders/shared.h).
+struct TriangleHistogram {
+  std::array<uint64_t, 15> bins{};  // < 1/8 px, [1/8, 1/4), ..., [512, 1024), >= 1024 px
+  uint64_t offscreen = 0, backfacing = 0;
+  uint64_t total() const;
+};
 
 struct RenderSettings {
   int width = 320, height = 180;
@@ -76,6 +85,9 @@ class Renderer {
                                    FrameResult* result = nullptr);
   // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
   std::vector<float> capturedLevels();
+  // Measurement passes, separate from timing frames (each waits for frames in flight).
+  TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr);
+  std::vector<float> renderErrorMap(const CameraPose& view, const CameraPose& lod);
 
   const RenderSettings& settings() const { return settings_; }
   uint32_t patchCount() const { return patchCount_; }
@@ -108,8 +120,8 @@ class Renderer {
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
-  Image color_, depth_, height_, schemeTex_;
-  Buffer readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
+  Image color_, errorTarget_, depth_, height_, schemeTex_;
+  Buffer histogram_, readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
   VkDeviceSize uniformStride_ = 0;
   VkSampler sampler_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;

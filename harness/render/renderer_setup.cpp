@@ -14,6 +14,7 @@ namespace lb {
 
 static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;
 static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+static constexpr VkFormat kErrorFormat = VK_FORMAT_R32_SFLOAT;
 
 uint32_t maxVerticesPerPatch(float level, Partitioning partitioning) {
   // Fractional modes round the segment count up to the next even/odd integer.
@@ -68,9 +69,9 @@ Renderer::~Renderer() {
   vkDestroyDescriptorPool(ctx_.device, descPool_, nullptr);
   vkDestroyDescriptorSetLayout(ctx_.device, setLayout_, nullptr);
   vkDestroySampler(ctx_.device, sampler_, nullptr);
-  for (Buffer* b : {&readback_, &vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &uniforms_})
+  for (Buffer* b : {&histogram_, &readback_, &vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &uniforms_})
     destroyBuffer(ctx_, *b);
-  for (Image* i : {&color_, &depth_, &height_, &schemeTex_}) destroyImage(ctx_, *i);
+  for (Image* i : {&color_, &errorTarget_, &depth_, &height_, &schemeTex_}) destroyImage(ctx_, *i);
 }
 
 void Renderer::createTargets() {
@@ -78,7 +79,10 @@ void Renderer::createTargets() {
   createImage(ctx_, color_, w, h, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
               VK_IMAGE_ASPECT_COLOR_BIT);
   createImage(ctx_, depth_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  createImage(ctx_, errorTarget_, w, h, kErrorFormat,
+              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   createBuffer(ctx_, readback_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  createBuffer(ctx_, histogram_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   createImage(ctx_, height_, uint32_t(terrain_.width), uint32_t(terrain_.height), VK_FORMAT_R32_SFLOAT,
               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   uploadImage(ctx_, height_, terrain_.h.data(), terrain_.h.size() * sizeof(float));
@@ -136,6 +140,7 @@ void Renderer::createDescriptors() {
       {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   li.bindingCount = uint32_t(std::size(b));
@@ -143,7 +148,7 @@ void Renderer::createDescriptors() {
   VK_CHECK(vkCreateDescriptorSetLayout(ctx_.device, &li, nullptr, &setLayout_));
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
   VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pi.maxSets = 1;
   pi.poolSizeCount = uint32_t(std::size(sizes));
@@ -180,7 +185,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo bb{bounds_.buffer, 0, VK_WHOLE_SIZE}, cb{capture_.buffer, 0, VK_WHOLE_SIZE},
-      sb{schemeBuf_.buffer, 0, VK_WHOLE_SIZE};
+      sb{schemeBuf_.buffer, 0, VK_WHOLE_SIZE}, hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
   auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* img,
                    const VkDescriptorBufferInfo* buf) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -199,6 +204,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &bb),
       write(LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &cb),
       write(LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &sb),
+      write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
 }
@@ -214,29 +220,46 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   const SchemeInfo& info = scheme_->info();
   if (mode == RenderMode::Wireframe && !ctx_.enabledFeatures.fillModeNonSolid)
     throw std::runtime_error("device lacks fillModeNonSolid: wireframe images are unavailable");
+  bool histogram = mode == RenderMode::Histogram;
+  if (histogram && !ctx_.enabledFeatures.geometryShader)
+    throw std::runtime_error("device lacks geometryShader: triangle-size histograms are unavailable");
   if (capture && !ctx_.enabledFeatures.vertexPipelineStoresAndAtomics)
     throw std::runtime_error("device lacks vertexPipelineStoresAndAtomics: tessellation factors cannot be captured");
-  VkShaderModule vs = loadShaderModule(ctx_, "terrain.vert.spv");
-  VkShaderModule tcs = loadShaderModule(ctx_, info.tesc + ".tesc.spv");
-  VkShaderModule tes = loadShaderModule(ctx_, info.tese + "_" + partitioningName(info.partitioning) + ".tese.spv");
-  VkShaderModule fs = loadShaderModule(ctx_, "terrain.frag.spv");
+  // Modules are destroyed on every exit, also when a later load or the pipeline creation throws.
+  VkShaderModule mods[5] = {};
+  struct ModuleGuard {
+    VkDevice device;
+    VkShaderModule* mods;
+    ~ModuleGuard() {
+      for (int i = 0; i < 5; ++i)
+        if (mods[i]) vkDestroyShaderModule(device, mods[i], nullptr);
+    }
+  } guard{ctx_.device, mods};
+  mods[0] = loadShaderModule(ctx_, "terrain.vert.spv");
+  mods[1] = loadShaderModule(ctx_, info.tesc + ".tesc.spv");
+  mods[2] = loadShaderModule(ctx_, info.tese + "_" + partitioningName(info.partitioning) + ".tese.spv");
+  mods[3] = loadShaderModule(ctx_, "terrain.frag.spv");
   int modeValue = int(mode);
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry modeEntry{0, 0, sizeof(int)}, captureEntry{1, 0, sizeof(VkBool32)};
   VkSpecializationInfo modeSpec{1, &modeEntry, sizeof(int), &modeValue};
   VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
-  VkPipelineShaderStageCreateInfo stages[4] = {};
-  VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-                                   VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, VK_SHADER_STAGE_FRAGMENT_BIT};
-  VkShaderModule mods[4] = {vs, tcs, tes, fs};
-  for (int i = 0; i < 4; ++i) {
-    stages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    stages[i].stage = bits[i];
-    stages[i].module = mods[i];
-    stages[i].pName = "main";
+  if (histogram) mods[4] = loadShaderModule(ctx_, "histogram.geom.spv");
+  VkPipelineShaderStageCreateInfo stages[5] = {};
+  VkShaderStageFlagBits bits[5] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+                                   VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                   VK_SHADER_STAGE_GEOMETRY_BIT};
+  const VkSpecializationInfo* specs[5] = {nullptr, &captureSpec, nullptr, &modeSpec, nullptr};
+  uint32_t stageCount = 0;
+  for (uint32_t i = 0; i < 5; ++i) {
+    if (!mods[i]) continue;
+    VkPipelineShaderStageCreateInfo& st = stages[stageCount++];
+    st = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    st.stage = bits[i];
+    st.module = mods[i];
+    st.pName = "main";
+    st.pSpecializationInfo = specs[i];
   }
-  stages[1].pSpecializationInfo = &captureSpec;
-  stages[3].pSpecializationInfo = &modeSpec;
   VkVertexInputBindingDescription vb{0, sizeof(float) * 2, VK_VERTEX_INPUT_RATE_VERTEX};
   VkVertexInputAttributeDescription va{0, 0, VK_FORMAT_R32G32_SFLOAT, 0};
   VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -259,6 +282,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   rs.polygonMode = mode == RenderMode::Wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
   rs.cullMode = VK_CULL_MODE_NONE;  // back faces are counted by the histogram pass, not hidden
   rs.lineWidth = 1.0f;
+  rs.rasterizerDiscardEnable = histogram;  // the histogram pass only counts triangles
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
@@ -270,13 +294,13 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   cb.attachmentCount = 1;
   cb.pAttachments = &att;
-  VkFormat colorFormat = kColorFormat;
+  VkFormat colorFormat = mode == RenderMode::Error ? kErrorFormat : kColorFormat;
   VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
   ri.colorAttachmentCount = 1;
   ri.pColorAttachmentFormats = &colorFormat;
   ri.depthAttachmentFormat = kDepthFormat;
   VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &ri};
-  gi.stageCount = 4;
+  gi.stageCount = stageCount;
   gi.pStages = stages;
   gi.pVertexInputState = &vi;
   gi.pInputAssemblyState = &ia;
@@ -289,7 +313,6 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   gi.layout = pipelineLayout_;
   VkPipeline p;
   VkResult r = vkCreateGraphicsPipelines(ctx_.device, VK_NULL_HANDLE, 1, &gi, nullptr, &p);
-  for (VkShaderModule m : mods) vkDestroyShaderModule(ctx_.device, m, nullptr);
   VK_CHECK(r);
   pipelines_[key] = p;
   return p;

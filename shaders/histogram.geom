@@ -1,0 +1,53 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Measurement pass only: bins the exact screen-space area of every tessellated triangle.
+// Each input triangle is counted exactly once; rasterization is discarded.
+#include "common.glsl"
+
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+layout(location = 0) in vec3 inWorld[];
+layout(location = 1) in float inLevel[];
+layout(location = 0) out vec3 outWorld;
+layout(location = 1) out float outLevel;
+
+layout(set = 0, binding = LB_BINDING_HISTOGRAM, std430) buffer Histogram { uint counts[LB_HIST_COUNTERS]; } hist;
+
+bool outsideOnePlane(vec4 a, vec4 b, vec4 c) {
+  return (a.x > a.w && b.x > b.w && c.x > c.w) || (a.x < -a.w && b.x < -b.w && c.x < -c.w) ||
+         (a.y > a.w && b.y > b.w && c.y > c.w) || (a.y < -a.w && b.y < -b.w && c.y < -c.w) ||
+         (a.z > a.w && b.z > b.w && c.z > c.w) || (a.z < 0.0 && b.z < 0.0 && c.z < 0.0);
+}
+
+void countTriangle() {
+  vec4 a = gl_in[0].gl_Position, b = gl_in[1].gl_Position, c = gl_in[2].gl_Position;
+  if (outsideOnePlane(a, b, c) || a.w <= 0.0 || b.w <= 0.0 || c.w <= 0.0) {
+    atomicAdd(hist.counts[LB_HIST_OFFSCREEN], 1u);
+    return;
+  }
+  vec2 pa = (a.xy / a.w) * 0.5 * frame.viewport.xy, pb = (b.xy / b.w) * 0.5 * frame.viewport.xy,
+       pc = (c.xy / c.w) * 0.5 * frame.viewport.xy;
+  // Vulkan's y points down the screen, so a terrain triangle facing the camera has a negative
+  // cross product here; flip it so front-facing areas are positive.
+  float signedArea = -0.5 * ((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
+  if (signedArea < 0.0) {
+    atomicAdd(hist.counts[LB_HIST_BACKFACING], 1u);
+    return;
+  }
+  // log2 binning: area in [2^(k-4), 2^(k-3)) goes to bin k.
+  int bin = signedArea < 0.125 ? 0 : clamp(int(floor(log2(signedArea))) + 4, 1, LB_HIST_BINS - 1);
+  atomicAdd(hist.counts[bin], 1u);
+}
+
+void main() {
+  countTriangle();
+  // Mesa 22.3 lavapipe crashes when a geometry shader after tessellation emits nothing, so the
+  // triangle passes through; the pipeline discards rasterization.
+  for (int i = 0; i < 3; ++i) {
+    gl_Position = gl_in[i].gl_Position;
+    outWorld = inWorld[i];
+    outLevel = inLevel[i];
+    EmitVertex();
+  }
+  EndPrimitive();
+}
