@@ -5,11 +5,13 @@ namespace lb {
 // Each scheme file defines one factory; adding a scheme = one line here.
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
+const Scheme& densityScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),
       &sphereScheme(),
+      &densityScheme(),
   };
   return schemes;
 }

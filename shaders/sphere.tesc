@@ -6,21 +6,11 @@
 // edge's two end points, so neighbours agree. Patches outside the frustum get factor 0 (culled).
 #include "common.glsl"
 #include "tesc_common.glsl"
+#include "screen_space.glsl"
 
 // SphereToScreenSpaceTessellation: diameter of the edge's bounding sphere in pixels / tri size.
 float sphereToScreenSpaceTessellation(vec3 p0, vec3 p1, float diameter) {
-  vec3 centre = 0.5 * (p0 + p1);
-  vec4 view0 = frame.lodView * vec4(centre, 1.0);
-  vec4 view1 = view0;
-  view1.x += diameter;
-  vec4 clip0 = frame.lodProj * view0;
-  vec4 clip1 = frame.lodProj * view1;
-  clip0 /= clip0.w;
-  clip1 /= clip1.w;
-  clip0.xy *= frame.viewport.xy;  // NDC spans 2 units: this gives twice the pixel distance
-  clip1.xy *= frame.viewport.xy;
-  float projectedDiameterPx = 0.5 * distance(clip0.xy, clip1.xy);
-  return clamp(projectedDiameterPx / schemeParam(0), 1.0, LB_MAX_FACTOR);  // tri_size
+  return clamp(sphereDiameterPixels(p0, p1, diameter) / schemeParam(0), 1.0, LB_MAX_FACTOR);  // tri_size
 }
 
 float edgeLevel(vec3 p0, vec3 p1) {
