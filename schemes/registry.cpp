@@ -6,12 +6,14 @@ namespace lb {
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
 const Scheme& densityScheme();
+const Scheme& phongScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),
       &sphereScheme(),
       &densityScheme(),
+      &phongScheme(),
   };
   return schemes;
 }

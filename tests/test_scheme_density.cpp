@@ -88,9 +88,9 @@ TEST(DensityMap, EdgeWalkVisitsTheSameTexelsEitherWay) {
   EXPECT_EQ(gridTexel(0, 16, 129), 0);
   EXPECT_EQ(gridTexel(1, 16, 129), 8);
   EXPECT_EQ(gridTexel(16, 16, 129), 128);
-  EXPECT_EQ(gridTexel(1, 3, 9), 3);    // 8/3 = 2.67 -> 3
-  EXPECT_EQ(gridTexel(1, 16, 9), 1);   // 0.5 -> 1 (half up)
-  EXPECT_EQ(gridTexel(1, 5, 9), 2);    // 1.6 -> 2
+  EXPECT_EQ(gridTexel(1, 3, 9), 3);   // 8/3 = 2.67 -> 3
+  EXPECT_EQ(gridTexel(1, 16, 9), 1);  // 0.5 -> 1 (half up)
+  EXPECT_EQ(gridTexel(1, 5, 9), 2);   // 1.6 -> 2
 }
 
 class DensityScheme : public lbtest::GpuTest {};

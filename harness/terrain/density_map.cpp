@@ -15,7 +15,9 @@ constexpr float kAxisWeight = 0.293f;      // horizontal and vertical variation
 constexpr float kDiagonalWeight = 0.207f;  // both diagonal variations
 
 // |(next - centre) - (centre - previous)|, written as the seed writes it.
-inline float variation(float previous, float centre, float next) { return std::fabs((next - centre) - (centre - previous)); }
+inline float variation(float previous, float centre, float next) {
+  return std::fabs((next - centre) - (centre - previous));
+}
 
 // Round-half-away-from-zero of num / den for den > 0.
 inline int roundDiv(int num, int den) {

@@ -2,9 +2,8 @@
 // Density map (AMD "Detail Tessellation 11", Density-based Tessellation; Rapp 2011, 5.2.3): how much the
 // surface bends at each heightfield sample, from second differences of the heights. Computed once at
 // load time; the density and phong schemes scale screen-space tessellation factors by it.
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace lb {
 
