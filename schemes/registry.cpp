@@ -5,6 +5,8 @@ namespace lb {
 // Each scheme file defines one factory; adding a scheme = one line here.
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
+const Scheme& interlockScheme();
+const Scheme& sphereRingsScheme();
 const Scheme& densityScheme();
 const Scheme& phongScheme();
 
@@ -12,6 +14,8 @@ const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),
       &sphereScheme(),
+      &interlockScheme(),
+      &sphereRingsScheme(),
       &densityScheme(),
       &phongScheme(),
   };

@@ -6,7 +6,7 @@
 // terms depend only on the edge, so neighbours agree. Patches outside the frustum get factor 0.
 #include "common.glsl"
 #include "tesc_common.glsl"
-#include "screen_space.glsl"
+#include "sphere_lod.glsl"
 #include "density.glsl"
 
 const int kTriSize = 2;  // parameters: threshold, scale (used at load time), tri_size

@@ -8,7 +8,6 @@
 // The control points carry unit vertex normals and the shape factor for terrain_tri.tese.
 #include "common.glsl"
 #include "tesc_tri_common.glsl"
-#include "screen_space.glsl"
 #include "density.glsl"
 
 layout(location = 1) out vec3 outNormal[];
@@ -16,6 +15,14 @@ layout(location = 2) patch out float outShape;
 
 // Parameters in declaration order; threshold and scale (4, 5) only shape the density map.
 const int kTriSize = 0, kAlpha = 1, kFrustumTolerance = 2, kBackFaceTolerance = 3;
+
+// Pixel position of a world point seen by the LOD camera (GetScreenSpacePosition of the AMD samples
+// the thesis builds on); false when the point is not in front of the camera.
+bool lodPixelPosition(vec3 p, out vec2 px) {
+  vec4 clip = frame.lodProj * (frame.lodView * vec4(p, 1.0));
+  px = clip.xy / clip.w * 0.5 * frame.viewport.xy;
+  return clip.w > 0.0;
+}
 
 // Vertex normal of the base grid: central differences one grid cell apart (5.2.2 averages the
 // adjacent faces; its grid matches the heightmap, where this equals terrainNormal()).

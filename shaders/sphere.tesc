@@ -6,16 +6,11 @@
 // edge's two end points, so neighbours agree. Patches outside the frustum get factor 0 (culled).
 #include "common.glsl"
 #include "tesc_common.glsl"
-#include "screen_space.glsl"
-
-// SphereToScreenSpaceTessellation: diameter of the edge's bounding sphere in pixels / tri size.
-float sphereToScreenSpaceTessellation(vec3 p0, vec3 p1, float diameter) {
-  return clamp(sphereDiameterPixels(p0, p1, diameter) / schemeParam(0), 1.0, LB_MAX_FACTOR);  // tri_size
-}
+#include "sphere_lod.glsl"
 
 float edgeLevel(vec3 p0, vec3 p1) {
   // Behind the LOD camera the projection is meaningless; the patch is culled or partly visible.
-  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1));
+  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1), schemeParam(0));  // tri_size
 }
 
 void main() {

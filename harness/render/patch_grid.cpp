@@ -65,4 +65,21 @@ std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology 
   return out;
 }
 
+glm::vec2 rectHeightBounds(const Heightfield& hf, glm::vec2 lo, glm::vec2 hi) {
+  // Texel range covering the rectangle, floor/ceil so bilinear neighbours are included, then clamped.
+  auto texel = [&hf](float world, int size, bool up) {
+    float t = std::clamp(world / hf.extent * float(size - 1), 0.0f, float(size - 1));
+    return int(up ? std::ceil(t) : std::floor(t));
+  };
+  int x0 = texel(lo.x, hf.width, false), x1 = texel(hi.x, hf.width, true);
+  int z0 = texel(lo.y, hf.height, false), z1 = texel(hi.y, hf.height, true);
+  glm::vec2 out(INFINITY, -INFINITY);
+  for (int z = z0; z <= z1; ++z)
+    for (int x = x0; x <= x1; ++x) {
+      float h = hf.at(x, z);
+      out = glm::vec2(std::min(out.x, h), std::max(out.y, h));
+    }
+  return out;
+}
+
 }  // namespace lb

@@ -20,5 +20,8 @@ uint32_t controlPointCount(Topology topology);
 uint32_t patchCountFor(int n, Topology topology);
 // Per patch (minHeight, maxHeight) over every heightfield sample the patch's bilinear surface touches.
 std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology topology);
+// (minHeight, maxHeight) over every sample the bilinear surface over the world rectangle [lo, hi] touches;
+// parts outside the terrain see the clamped border, as terrainHeight() does.
+glm::vec2 rectHeightBounds(const Heightfield& hf, glm::vec2 lo, glm::vec2 hi);
 
 }  // namespace lb

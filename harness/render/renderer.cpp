@@ -112,7 +112,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
-  // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices.
+  // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices or kMaxIndicesPerDraw indices.
   for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
     uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
     DrawPush push{first, {0, 0, 0}};

@@ -98,24 +98,33 @@ void Renderer::createTargets() {
 }
 
 void Renderer::createGrid() {
-  destroyBuffer(ctx_, vertices_);
-  destroyBuffer(ctx_, indices_);
-  destroyBuffer(ctx_, bounds_);
-  destroyBuffer(ctx_, capture_);
+  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_}) destroyBuffer(ctx_, *b);
   Topology topo = scheme_->info().topology;
-  auto verts = gridVertices(settings_.grid, terrain_.extent);
-  auto idx = patchIndices(settings_.grid, topo);
-  auto bounds = patchHeightBounds(terrain_, settings_.grid, topo);
-  patchCount_ = patchCountFor(settings_.grid, topo);
   controlPoints_ = controlPointCount(topo);
-  createBufferWithData(ctx_, vertices_, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  createBufferWithData(ctx_, indices_, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  createBufferWithData(ctx_, bounds_, bounds.data(), bounds.size() * sizeof(bounds[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  PatchGeometry g = scheme_->patchGeometry(terrain_, params_);
+  if (g.vertices.empty()) {
+    g.vertices = gridVertices(settings_.grid, terrain_.extent);
+    g.indices = patchIndices(settings_.grid, topo);
+    g.bounds = patchHeightBounds(terrain_, settings_.grid, topo);
+  }
+  patchCount_ = uint32_t(g.indices.size() / controlPoints_);
+  if (patchCount_ == 0 || g.indices.size() % controlPoints_ != 0 || g.bounds.size() != patchCount_)
+    throw std::logic_error("scheme '" + scheme_->info().name + "' supplied inconsistent patch geometry");
+  for (uint32_t i : g.indices)
+    if (i >= g.vertices.size()) throw std::logic_error("scheme '" + scheme_->info().name + "': index out of range");
+  // Schemes without a buffer still get a valid binding.
+  if (g.schemeBuffer.empty()) g.schemeBuffer.assign(4, 0.0f);
+  auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
+  createBufferWithData(ctx_, vertices_, g.vertices.data(), bytes(g.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  createBufferWithData(ctx_, indices_, g.indices.data(), bytes(g.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  createBufferWithData(ctx_, bounds_, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  createBufferWithData(ctx_, schemeBuf_, g.schemeBuffer.data(), bytes(g.schemeBuffer),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createBuffer(ctx_, capture_, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memset(capture_.mapped, 0, size_t(capture_.size));
   uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->info().partitioning);
-  patchesPerDraw_ = std::max(1u, kMaxVerticesPerDraw / perPatch);
+  patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));
 }
 
 void Renderer::createDescriptors() {

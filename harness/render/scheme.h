@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 namespace lb {
 
 struct FrameUniforms;
@@ -42,6 +44,15 @@ struct SchemeTexture {
   std::vector<float> rgba;  // width * height * 4
 };
 
+// Optional base mesh a scheme supplies instead of the renderer's uniform N x N grid (non-uniform
+// patch sizes). Patch p uses indices [p * controlPointCount(topology), ...) in this order.
+struct PatchGeometry {
+  std::vector<glm::vec2> vertices;  // world x, z
+  std::vector<uint32_t> indices;    // control points of every patch, patch after patch
+  std::vector<glm::vec2> bounds;    // per patch (minHeight, maxHeight) for the control shader's culling
+  std::vector<float> schemeBuffer;  // optional; bound at LB_BINDING_SCHEME_BUF as std430 floats
+};
+
 class Scheme {
  public:
   virtual ~Scheme() = default;
@@ -50,6 +61,8 @@ class Scheme {
   virtual float maxLevel(const ParamValues&) const { return 64.0f; }
   // Load-time preprocessing on the CPU; empty texture when the scheme needs none.
   virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
+  // Load-time patch layout; no vertices = the renderer's uniform grid (RenderSettings::grid).
+  virtual PatchGeometry patchGeometry(const Heightfield&, const ParamValues&) const { return {}; }
   // Per-frame CPU work: packs parameters into the uniform block (override for more).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
 };

@@ -167,7 +167,9 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     std::string ptr = std::string("/") + key;
     auto pair = [&](const json& p, const std::string& pp) {
       if (!p.is_array() || p.size() != 2) r.fail(pp, "expected [width, height]");
-      return std::make_pair(r.integer(p[0], pp + "/0", 16, 8192), r.integer(p[1], pp + "/1", 16, 8192));
+      int w = r.integer(p[0], pp + "/0", 16, 8192);
+      int h = r.integer(p[1], pp + "/1", 16, 8192);
+      return std::make_pair(w, h);
     };
     c.resolutions.clear();
     if (v.is_array() && !v.empty() && v[0].is_array()) {

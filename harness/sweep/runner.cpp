@@ -1,6 +1,7 @@
 #include "sweep/runner.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -61,10 +62,12 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       renderer.submitFrame(f, p, p);
       for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
       int done = rep * frames + f + 1;
-      if (progress && (done % 10 == 0 || done == total)) {
+      // On a terminal the line updates in place; in logs, one line per tenth of the case.
+      bool tty = isatty(fileno(stderr));
+      if (progress && (tty ? done % 10 == 0 || done == total : done % std::max(1, total / 10) == 0)) {
         double el = secondsSince(t0);
-        std::fprintf(stderr, "\r    frame %d/%d  %.1fs elapsed, ~%.0fs left   ", done, total, el,
-                     el / done * (total - done));
+        std::fprintf(stderr, "%s    frame %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", done, total, el,
+                     el / done * (total - done), tty ? "   " : "\n");
         std::fflush(stderr);
       }
     }
@@ -162,16 +165,24 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       r.status = "failed";
       r.reason = e.what();
     }
-    if (options.progress) std::fprintf(stderr, "\r    %s%s%s\n", r.status.c_str(), r.reason.empty() ? "" : ": ",
-                                       r.reason.c_str());
+    if (options.progress) {
+      json sum = caseSummary(r);
+      if (r.status == "ok" && sum.contains("gpu_ms"))
+        std::fprintf(stderr, "\r    ok: %zu frames, GPU median %.3f ms, %.0f triangles median, %.1fs\n", r.frames.size(),
+                     sum["gpu_ms"]["median"].get<double>(), sum["triangles"]["median"].get<double>(), r.seconds);
+      else
+        std::fprintf(stderr, "\r    %s: %s\n", r.status.c_str(), r.reason.c_str());
+    }
     (r.status == "ok" ? totals.ok : r.status == "skipped" ? totals.skipped : totals.failed)++;
     writeFileAtomic(caseFile, caseJson(c, r).dump(1));
     writeAggregates(totals.dir, context);
   }
   run["end_time"] = isoTimeUtc();
   run["totals"] = {{"ok", totals.ok}, {"failed", totals.failed}, {"skipped", totals.skipped}, {"cases", cases.size()}};
+  run["validation_errors"] = ctx.validationErrors.load();
   writeFileAtomic(runJson, run.dump(2));
   writeAggregates(totals.dir, context);
+  totals.validationErrors = ctx.validationErrors.load();
   return totals;
 }
 

@@ -19,6 +19,7 @@ struct RunOptions {
 struct RunTotals {
   std::string dir;
   int ok = 0, failed = 0, skipped = 0, resumed = 0;
+  int validationErrors = 0;  // when the validation layer was on
 };
 
 RunTotals runSweep(const Config& config, const RunOptions& options);

@@ -1,0 +1,35 @@
+#pragma once
+// Image comparisons on RGBA8 frames (design section 6): PSNR, SSIM, differing pixels, cracks.
+#include <cstdint>
+#include <vector>
+
+namespace lb {
+
+struct RgbaImage {
+  int width = 0, height = 0;
+  std::vector<uint8_t> px;  // width * height * 4
+};
+
+struct ImageError {
+  double psnrDb = 0;        // over RGB; kPsnrIdentical when the images are identical
+  double ssim = 0;          // mean SSIM of luma, 11x11 Gaussian window (sigma 1.5), Wang et al. 2004
+  double meanAbsDiff = 0;   // mean over pixels of the mean absolute RGB difference, in 0..255
+  double fractionOver = 0;  // fraction of pixels whose largest channel difference exceeds the threshold
+  double p99AbsDiff = 0;    // 99th percentile of the per-pixel largest channel difference
+  long changedPixels = 0;   // pixels with any channel difference
+};
+constexpr double kPsnrIdentical = 100.0;
+
+ImageError compareImages(const RgbaImage& a, const RgbaImage& b, int threshold = 16);
+double ssim(const RgbaImage& a, const RgbaImage& b);
+
+// The clear colour (magenta) marks pixels no terrain covers.
+bool isClear(const RgbaImage& img, int x, int y);
+
+// Crack pixels: clear colour in `img` where the crack-free `reference` shows terrain, and the
+// pixel is enclosed by terrain of `img` within `reach` pixels on both sides horizontally or
+// vertically (a hole, not a silhouette difference). Returns the count; mask is 0/1 per pixel.
+long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask = nullptr,
+                 int reach = 3);
+
+}  // namespace lb

@@ -1,0 +1,48 @@
+// Practical Rendering & Computation with Direct3D 11, ch. 9.1.1 "GPU-Accelerated Interlocking
+// Tiles Algorithm" (after Snook 2001), Listings 9.1, 9.2, 9.4-9.7: 12-control-point patches (own
+// corners + two points of each neighbour, clamped at the terrain border); the LODs of the patch's
+// midpoint and its four neighbours' midpoints, linear in distance between min/max distance and
+// min/max LOD; inner = own LOD, edge = min(own, neighbour); fractional_odd. Shader:
+// shaders/interlock.tesc. Frustum culling is our addition (cull=1, as the sphere scheme does).
+#include <algorithm>
+
+#include "render/scheme.h"
+
+namespace lb {
+namespace {
+
+class Interlock : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    // Listing 9.7's minMaxDistance / minMaxLOD. The book gives no values; these suit extent 1000:
+    // max_lod 16 is one segment per heightfield texel for 513 samples over a 32-patch grid (the
+    // book sizes its height map 4-8x its grid for this reason), and LOD falls to 1 about a
+    // terrain diagonal away.
+    static const SchemeInfo kInfo = {
+        "interlock",
+        "interlocking tiles: distance LOD of own + 4 neighbour midpoints, edge = min",
+        "practical-d3d11-ch9: 9.1.1 GPU-Accelerated Interlocking Tiles, Listings 9.1, 9.2, 9.4-9.7",
+        {{"min_distance", 100, 0, 100000, false, "distance at and below which a midpoint gets max_lod"},
+         {"max_distance", 1500, 0, 100000, false, "distance at and beyond which a midpoint gets min_lod"},
+         {"min_lod", 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
+         {"max_lod", 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
+         {"cull", 1, 0, 1, true, "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
+        Topology::Quad12,
+        Partitioning::FractionalOdd,
+        "interlock",
+        "terrain_quad",
+        true,
+    };
+    return kInfo;
+  }
+  float maxLevel(const ParamValues& v) const override { return float(std::max(v.at("min_lod"), v.at("max_lod"))); }
+};
+
+}  // namespace
+
+const Scheme& interlockScheme() {
+  static const Interlock scheme;
+  return scheme;
+}
+
+}  // namespace lb

@@ -1,0 +1,90 @@
+// Every registered scheme: builds, renders the shipped paths without validation errors, repeats
+// its counters exactly, keeps every factor in [1, 64] (or 0 = culled), rejects bad parameters.
+#include <cmath>
+#include <set>
+
+#include "error.h"
+#include "gpu_fixture.h"
+#include "shaders/shared.h"
+
+using namespace lb;
+
+namespace {
+
+std::vector<std::string> schemeNamesList() {
+  std::vector<std::string> names;
+  for (const Scheme* s : allSchemes()) names.push_back(s->info().name);
+  return names;
+}
+
+std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string n = info.param;
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+}
+
+class EveryScheme : public lbtest::GpuTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(EveryScheme, RendersShippedPathsDeterministicallyWithinLimits) {
+  const Scheme& scheme = *findScheme(GetParam());
+  const Heightfield& terrain = lbtest::testTerrain();
+  Renderer r(lbtest::gpu(), terrain, {96, 64, 12});
+  r.setScheme(scheme, {});
+  for (const char* name : {"flyover", "lowalt", "horizon"}) {
+    CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/" + name + ".csv");
+    int frames = frameCount(path, 30);
+    for (int f : {0, frames / 2, frames - 1}) {
+      CameraPose pose = samplePose(path, 30, f, terrain);
+      FrameResult a = lbtest::renderOnce(r, pose);
+      FrameResult b = lbtest::renderOnce(r, pose);
+      SCOPED_TRACE(std::string(name) + " frame " + std::to_string(f));
+      EXPECT_EQ(a.stats.tcsPatches, b.stats.tcsPatches);
+      EXPECT_EQ(a.stats.tesInvocations, b.stats.tesInvocations);
+      EXPECT_EQ(a.stats.clipInvocations, b.stats.clipInvocations);
+      EXPECT_EQ(a.stats.clipPrimitives, b.stats.clipPrimitives);
+      EXPECT_EQ(a.stats.fsInvocations, b.stats.fsInvocations);
+      EXPECT_EQ(a.stats.tcsPatches, r.patchCount());
+      EXPECT_GT(a.stats.clipInvocations, 0u) << "the terrain is in view on every shipped path";
+      r.renderImage(pose, pose, RenderMode::Shaded);
+      auto levels = r.capturedLevels();
+      int outOfRange = 0;
+      for (float v : levels) outOfRange += !(v == 0.0f || (v >= 1.0f && v <= LB_MAX_FACTOR));
+      EXPECT_EQ(outOfRange, 0);
+    }
+  }
+}
+
+TEST_P(EveryScheme, RejectsOutOfRangeParameters) {
+  const SchemeInfo& info = findScheme(GetParam())->info();
+  EXPECT_NO_THROW(resolveParams(info, {}));
+  for (const ParamSpec& p : info.params) {
+    for (double bad : {p.min - 1.0, p.max + 1.0, double(NAN)}) {
+      try {
+        resolveParams(info, {{p.name, bad}});
+        ADD_FAILURE() << p.name << " = " << bad << " accepted";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(p.name), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(info.name), std::string::npos) << e.what();
+      }
+    }
+    EXPECT_NO_THROW(resolveParams(info, {{p.name, p.defaultValue}}));
+  }
+  EXPECT_THROW(resolveParams(info, {{"no_such_parameter", 1.0}}), InputError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, EveryScheme, ::testing::ValuesIn(schemeNamesList()), paramName);
+
+TEST(Registry, NamesAreUniqueAndDescribed) {
+  std::set<std::string> names;
+  for (const Scheme* s : allSchemes()) {
+    const SchemeInfo& i = s->info();
+    EXPECT_TRUE(names.insert(i.name).second) << i.name;
+    EXPECT_FALSE(i.description.empty()) << i.name;
+    EXPECT_FALSE(i.seed.empty()) << i.name;
+    EXPECT_FALSE(i.tesc.empty()) << i.name;
+    EXPECT_LE(i.params.size(), size_t(LB_SCHEME_PARAM_VEC4S * 4)) << i.name;
+  }
+}
+
+}  // namespace

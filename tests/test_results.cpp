@@ -1,0 +1,121 @@
+// End-to-end: a tiny sweep writes the documented files; failures are data; reruns resume.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "sweep/config.h"
+#include "sweep/runner.h"
+
+using namespace lb;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+static json readJson(const fs::path& p) {
+  std::ifstream f(p);
+  return json::parse(f);
+}
+
+static Config tinyConfig(const std::string& extraTerrain = "") {
+  std::string text = R"({
+    "name": "tiny", "resolution": [64, 48], "grid": 8, "fps": 10, "warmup_frames": 1, "max_frames": 4,
+    "terrains": [{"type": "procedural", "size": 65, "seed": 3})" + extraTerrain + R"(],
+    "paths": ["paths/flyover.csv"],
+    "schemes": [{"name": "uniform", "params": {"level": 3}}, "sphere"],
+    "images": {"frames": [1], "modes": ["shaded", "heatmap"]}
+  })";
+  return parseConfig(text, "tiny.json", std::string(LODBENCH_SOURCE_DIR) + "/configs");
+}
+
+static fs::path freshDir(const std::string& name) {
+  fs::path d = fs::path(::testing::TempDir()) / name;
+  fs::remove_all(d);
+  return d;
+}
+
+TEST(Results, SchemaOfEveryFile) {
+  fs::path dir = freshDir("lodbench_schema");
+  RunTotals t = runSweep(tinyConfig(), {dir.string(), false, false});
+  EXPECT_EQ(t.ok, 2);
+  EXPECT_EQ(t.failed, 0);
+  EXPECT_EQ(t.validationErrors, 0);
+
+  json run = readJson(dir / "run.json");
+  EXPECT_EQ(run["schema_version"], 1);
+  for (const char* key : {"tool_version", "git_commit", "device", "driver", "api_version", "timestamp_period_ns",
+                          "config", "host", "time", "build_type"})
+    EXPECT_TRUE(run["context"].contains(key)) << key;
+  EXPECT_EQ(run["context"]["config"]["name"], "tiny");
+  EXPECT_TRUE(run.contains("end_time"));
+  EXPECT_EQ(run["totals"]["ok"], 2);
+
+  json c = readJson(dir / "cases" / "uniform-level3_proc65s3_flyover_64x48.json");
+  EXPECT_EQ(c["schema_version"], 1);
+  EXPECT_EQ(c["status"], "ok");
+  EXPECT_EQ(c["params"]["level"], 3.0);
+  ASSERT_EQ(c["frames"].size(), 4u);
+  for (auto& f : c["frames"]) {
+    for (const char* key : {"frame", "gpu_ms", "cpu_ms", "fps", "patches", "tes_invocations", "clip_invocations",
+                            "clip_primitives", "fragment_invocations"})
+      EXPECT_TRUE(f.contains(key)) << key;
+    EXPECT_EQ(f["patches"], 64);
+    EXPECT_EQ(f["tes_invocations"], 64 * 16);  // (3+1)^2 per patch
+    EXPECT_EQ(f["clip_invocations"], 64 * 18);  // 2 * 3^2 per patch
+    EXPECT_GT(f["gpu_ms"].get<double>(), 0.0);
+  }
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(c["frames"][i]["frame"], i) << "frames in order";
+  for (const char* key : {"median", "p5", "p95", "p99", "mean"}) EXPECT_TRUE(c["summary"]["gpu_ms"].contains(key));
+  EXPECT_EQ(c["summary"]["triangles"]["median"], 64 * 18);
+  EXPECT_GT(c["summary"]["fps_median"].get<double>(), 0.0);
+  ASSERT_EQ(c["images"].size(), 2u);
+  for (auto& img : c["images"]) EXPECT_TRUE(fs::exists(dir / img.get<std::string>())) << img;
+
+  json s = readJson(dir / "summary.json");
+  EXPECT_EQ(s["schema_version"], 1);
+  EXPECT_EQ(s["cases"].size(), 2u);
+
+  std::ifstream csv(dir / "frames.csv");
+  std::string line;
+  int rows = 0;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("case_id,frame,gpu_ms", 0), 0u);
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 8);
+  for (auto& e : fs::recursive_directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "leftover temp file " << e.path();
+}
+
+TEST(Results, FailingCaseIsRecordedAndSweepGoesOn) {
+  fs::path dir = freshDir("lodbench_fail");
+  fs::create_directories(dir);
+  // A heightmap that exists (the config accepts it) but is not a valid .hgt: its cases fail.
+  std::ofstream(dir / "broken.hgt") << "not a heightmap";
+  Config config = tinyConfig(R"(, {"type": "hgt", "file": ")" + (dir / "broken.hgt").string() + R"("})");
+  RunTotals t = runSweep(config, {(dir / "run").string(), false, false});
+  EXPECT_EQ(t.ok, 2);
+  EXPECT_EQ(t.failed, 2);
+  json s = readJson(dir / "run" / "summary.json");
+  int failed = 0;
+  for (auto& c : s["cases"])
+    if (c["status"] == "failed") {
+      ++failed;
+      EXPECT_NE(c["reason"].get<std::string>().find("broken.hgt"), std::string::npos) << c["reason"];
+    }
+  EXPECT_EQ(failed, 2);
+}
+
+TEST(Results, RerunResumesFinishedCases) {
+  fs::path dir = freshDir("lodbench_resume");
+  runSweep(tinyConfig(), {dir.string(), false, false});
+  auto stamp = fs::last_write_time(dir / "cases" / "sphere_proc65s3_flyover_64x48.json");
+  fs::remove(dir / "cases" / "uniform-level3_proc65s3_flyover_64x48.json");  // as if killed before it finished
+  RunTotals t = runSweep(tinyConfig(), {dir.string(), false, false});
+  EXPECT_EQ(t.resumed, 1);
+  EXPECT_EQ(t.ok, 2);
+  EXPECT_EQ(fs::last_write_time(dir / "cases" / "sphere_proc65s3_flyover_64x48.json"), stamp) << "kept, not redone";
+  EXPECT_TRUE(fs::exists(dir / "cases" / "uniform-level3_proc65s3_flyover_64x48.json"));
+  EXPECT_EQ(readJson(dir / "summary.json")["cases"].size(), 2u);
+}
