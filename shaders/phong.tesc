@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Rapp 2011, 5.2.4 (Figure 5-11 and the text after it): triangle patches; a triangle is dropped when
-// all corners lie beyond one side plane of the frustum by more than a tolerance, or when all three
+// all corners lie beyond one side (or the near) plane by more than a tolerance, or when all three
 // edge normals face away from the eye by more than a tolerance; otherwise edge factor = edge length
 // on screen / desired triangle size, inner = mean of the edges, then each is multiplied by the
 // density (per edge the maximum along the edge, inside the largest of the three). fractional_odd.
