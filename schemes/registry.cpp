@@ -7,6 +7,8 @@ const Scheme& uniformScheme();
 const Scheme& sphereScheme();
 const Scheme& interlockScheme();
 const Scheme& sphereRingsScheme();
+const Scheme& densityScheme();
+const Scheme& phongScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
@@ -14,6 +16,8 @@ const std::vector<const Scheme*>& allSchemes() {
       &sphereScheme(),
       &interlockScheme(),
       &sphereRingsScheme(),
+      &densityScheme(),
+      &phongScheme(),
   };
   return schemes;
 }

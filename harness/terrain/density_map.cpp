@@ -1,0 +1,72 @@
+#include "terrain/density_map.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdlib>
+
+#include "terrain/heightfield.h"
+
+namespace lb {
+
+namespace {
+
+constexpr float kAxisWeight = 0.293f;      // horizontal and vertical variation
+constexpr float kDiagonalWeight = 0.207f;  // both diagonal variations
+
+// |(next - centre) - (centre - previous)|, written as the seed writes it.
+inline float variation(float previous, float centre, float next) {
+  return std::fabs((next - centre) - (centre - previous));
+}
+
+// Round-half-away-from-zero of num / den for den > 0.
+inline int roundDiv(int num, int den) {
+  int q = (2 * std::abs(num) + den) / (2 * den);
+  return num < 0 ? -q : q;
+}
+
+}  // namespace
+
+std::vector<float> densityMap(const Heightfield& hf, float threshold, float scale) {
+  const int w = hf.width, h = hf.height;
+  std::vector<float> out(size_t(w) * size_t(h), kMinDensity);
+  if (w < 3 || h < 3) return out;  // no interior sample has all eight neighbours
+  const float range = hf.maxHeight - hf.minHeight;
+  auto height = [&](int x, int z) { return range > 0 ? (hf.at(x, z) - hf.minHeight) / range : 0.0f; };
+  for (int z = 0; z < h; ++z)
+    for (int x = 0; x < w; ++x) {
+      const int cx = std::clamp(x, 1, w - 2), cz = std::clamp(z, 1, h - 2);  // border: nearest interior
+      const float c = height(cx, cz);
+      const float horizontal = variation(height(cx - 1, cz), c, height(cx + 1, cz));
+      const float vertical = variation(height(cx, cz - 1), c, height(cx, cz + 1));
+      const float firstDiagonal = variation(height(cx - 1, cz + 1), c, height(cx + 1, cz - 1));
+      const float secondDiagonal = variation(height(cx - 1, cz - 1), c, height(cx + 1, cz + 1));
+      float density = 0.0f;
+      if (horizontal >= threshold) density += kAxisWeight * horizontal;
+      if (vertical >= threshold) density += kAxisWeight * vertical;
+      if (firstDiagonal >= threshold) density += kDiagonalWeight * firstDiagonal;
+      if (secondDiagonal >= threshold) density += kDiagonalWeight * secondDiagonal;
+      density *= scale;
+      out[size_t(z) * size_t(w) + size_t(x)] = std::max(std::min(density, 1.0f), kMinDensity);
+    }
+  return out;
+}
+
+int gridTexel(int i, int n, int size) {
+  assert(i >= 0 && n > 0 && size > 0);
+  return (2 * i * (size - 1) + n) / (2 * n);
+}
+
+float maxDensityAlongEdge(const std::vector<float>& map, int w, glm::ivec2 a, glm::ivec2 b) {
+  if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b);
+  const glm::ivec2 d = b - a;
+  const int steps = std::max(std::abs(d.x), std::abs(d.y));
+  float best = 0.0f;
+  for (int k = 0; k <= steps; ++k) {
+    glm::ivec2 t = steps == 0 ? a : a + glm::ivec2(roundDiv(k * d.x, steps), roundDiv(k * d.y, steps));
+    best = std::max(best, map[size_t(t.y) * size_t(w) + size_t(t.x)]);
+  }
+  return best;
+}
+
+}  // namespace lb

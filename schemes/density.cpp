@@ -1,0 +1,52 @@
+// AMD "Detail Tessellation 11" (Thibieroz), "Density-based Tessellation", and Rapp 2011 (bachelor
+// thesis), 5.2.3 "Density Map Creation": a density map from the heightfield's second-order height
+// variation is built at load time (harness/terrain/density_map.cpp); per edge, the maximum density
+// along the edge multiplies a screen-space factor. The screen-space term is NVIDIA's projected edge
+// sphere (sphere scheme); fractional_even as in that scheme, so the two differ only by the density.
+// Shader: shaders/density.tesc.
+#include "render/scheme.h"
+#include "terrain/density_map.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+namespace {
+
+class Density : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "density",
+        "screen-space edge sphere / tri size, times the maximum height-curvature density along the edge",
+        "amd-detail-tessellation-11: Density-based Tessellation; rapp-adaptive-terrain-thesis-2011: 5.2.3",
+        {
+            // Heights are normalised to [0,1]; the SDK used 2/255 to skip its 8-bit steps, float maps have none.
+            {"threshold", 0, 0, 1, false, "second differences below this (normalised height) are ignored"},
+            // Per-sample second differences shrink with resolution: 40 spreads a 513^2 map over (1/255, 1].
+            {"scale", 40, 0, 10000, false, "density = scale * weighted second differences, clamped to [1/255, 1]"},
+            {"tri_size", 3, 0.5, 64, false, "target triangle width in pixels before the density factor"},
+        },
+        Topology::Quad4,
+        Partitioning::FractionalEven,
+        "density",
+        "terrain_quad",
+        true,
+    };
+    return kInfo;
+  }
+
+  SchemeTexture preprocess(const Heightfield& hf, const ParamValues& v) const override {
+    std::vector<float> d = densityMap(hf, float(v.at("threshold")), float(v.at("scale")));
+    SchemeTexture tex{hf.width, hf.height, std::vector<float>(d.size() * 4, 0.0f)};
+    for (size_t i = 0; i < d.size(); ++i) tex.rgba[i * 4] = d[i];
+    return tex;
+  }
+};
+
+}  // namespace
+
+const Scheme& densityScheme() {
+  static const Density scheme;
+  return scheme;
+}
+
+}  // namespace lb

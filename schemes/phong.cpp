@@ -1,0 +1,59 @@
+// Rapp 2011 (bachelor thesis), 5.2.4 "Shader Pipeline", Figures 5-11 and 5-13, with Phong tessellation
+// after Boubekeur & Alexa 2008. Triangle patches (two per grid quad); the control shader culls
+// triangles outside the frustum or facing away (each with a tolerance), sets edge factors from the
+// edge's length on screen / desired triangle size, and multiplies them by the density map of 5.2.3
+// (harness/terrain/density_map.cpp); the evaluation shader (terrain_tri.tese) places vertices on the
+// Phong surface with shape factor alpha. fractional_odd, as in Figure 5-11.
+// Shader: shaders/phong.tesc.
+#include "render/scheme.h"
+#include "terrain/density_map.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+namespace {
+
+class Phong : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "phong",
+        "triangles: screen-space edge length / tri size x density, culling, Phong tessellation",
+        "rapp-adaptive-terrain-thesis-2011: 5.2.4 (Figures 5-11, 5-13); Boubekeur & Alexa 2008",
+        {
+            {"tri_size", 4, 0.5, 64, false, "desired triangle edge on screen in pixels (the thesis measured 4)"},
+            // Boubekeur & Alexa recommend 3/4; the thesis shows cracks near the horizon at 0.75.
+            {"alpha", 0.75, 0, 1, false, "Phong shape factor: 0 flat triangles, 1 full Phong surface"},
+            // alpha bounds how far Phong moves a point (in longest edges), but that bound is loose: on the
+            // shipped paths 0 and 4 give identical images at alpha 1, while 1 keeps 7x the triangles at low altitude.
+            {"frustum_tolerance", 0.1, 0, 4, false,
+             "frustum cull margin in longest triangle edges (>= alpha can never cull a visible triangle)"},
+            {"backface_tolerance", 0.25, 0, 1, false,
+             "cull when every edge normal . direction to eye <= -this (1: never cull)"},
+            {"threshold", 0, 0, 1, false, "density map: second differences below this are ignored"},
+            {"scale", 40, 0, 10000, false, "density map: density = scale * weighted second differences"},
+        },
+        Topology::Tri3,
+        Partitioning::FractionalOdd,
+        "phong",
+        "terrain_tri",
+        true,
+    };
+    return kInfo;
+  }
+
+  SchemeTexture preprocess(const Heightfield& hf, const ParamValues& v) const override {
+    std::vector<float> d = densityMap(hf, float(v.at("threshold")), float(v.at("scale")));
+    SchemeTexture tex{hf.width, hf.height, std::vector<float>(d.size() * 4, 0.0f)};
+    for (size_t i = 0; i < d.size(); ++i) tex.rgba[i * 4] = d[i];
+    return tex;
+  }
+};
+
+}  // namespace
+
+const Scheme& phongScheme() {
+  static const Phong scheme;
+  return scheme;
+}
+
+}  // namespace lb

@@ -1,0 +1,39 @@
+// Density map lookups (AMD "Detail Tessellation 11", Density-based; Rapp 2011, 5.2.3). The map is
+// harness/terrain/density_map.cpp's output, one texel per heightfield sample, density in .r.
+// Everything here is integer arithmetic identical to density_map.cpp, so tests can recompute it.
+layout(set = 0, binding = LB_BINDING_SCHEME_TEX) uniform sampler2D densityMap;
+
+// round(i * (size - 1) / n): the texel under grid vertex index i (density_map.cpp gridTexel).
+int gridTexel(int i, int n, int size) { return (2 * i * (size - 1) + n) / (2 * n); }
+
+// Texel under grid vertex (i, j) of the N x N patch grid.
+ivec2 gridVertexTexel(ivec2 v) {
+  ivec2 size = textureSize(densityMap, 0);
+  int n = int(frame.terrain.y);
+  return ivec2(gridTexel(v.x, n, size.x), gridTexel(v.y, n, size.y));
+}
+
+// Round half away from zero of num / den, den > 0.
+int roundDiv(int num, int den) {
+  int q = (2 * abs(num) + den) / (2 * den);
+  return num < 0 ? -q : q;
+}
+
+// Maximum density over the texels the edge a-b crosses (seed: "for each edge ... the maximum density
+// along the edge"): max(|dx|, |dz|) + 1 evenly stepped texels, walked from the lexicographically
+// smaller end so both patches sharing the edge read the same texels and agree on its factor.
+float maxDensityAlongEdge(ivec2 a, ivec2 b) {
+  if (b.x < a.x || (b.x == a.x && b.y < a.y)) {
+    ivec2 t = a;
+    a = b;
+    b = t;
+  }
+  ivec2 d = b - a;
+  int steps = max(abs(d.x), abs(d.y));
+  float best = 0.0;
+  for (int k = 0; k <= steps; ++k) {
+    ivec2 t = steps == 0 ? a : a + ivec2(roundDiv(k * d.x, steps), roundDiv(k * d.y, steps));
+    best = max(best, texelFetch(densityMap, t, 0).r);
+  }
+  return best;
+}
