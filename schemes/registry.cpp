@@ -5,11 +5,15 @@ namespace lb {
 // Each scheme file defines one factory; adding a scheme = one line here.
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
+const Scheme& distanceScheme();
+const Scheme& referenceScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),
       &sphereScheme(),
+      &distanceScheme(),
+      &referenceScheme(),
   };
   return schemes;
 }

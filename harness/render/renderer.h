@@ -73,6 +73,8 @@ class Renderer {
                                    FrameResult* result = nullptr);
   // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
   std::vector<float> capturedLevels();
+  // The scheme texture (CPU preprocessing or compute pass output) read back from the GPU.
+  SchemeTexture readSchemeTexture();
 
   const RenderSettings& settings() const { return settings_; }
   uint32_t patchCount() const { return patchCount_; }
