@@ -7,6 +7,7 @@ const Scheme& uniformScheme();
 const Scheme& sphereScheme();
 const Scheme& distanceScheme();
 const Scheme& referenceScheme();
+const Scheme& planeFitScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
@@ -14,6 +15,7 @@ const std::vector<const Scheme*>& allSchemes() {
       &sphereScheme(),
       &distanceScheme(),
       &referenceScheme(),
+      &planeFitScheme(),
   };
   return schemes;
 }
