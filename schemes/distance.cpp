@@ -3,6 +3,7 @@
 // per-edge factors that keep neighbours crack-free. fractional_odd as in the book (section 9.1.1).
 // Shaders: shaders/distance.tesc, shaders/distance_lod.glsl.
 #include <algorithm>
+#include <sstream>
 #include <string>
 
 #include "error.h"
@@ -10,6 +11,12 @@
 
 namespace lb {
 namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 class Distance : public Scheme {
  public:
@@ -34,11 +41,11 @@ class Distance : public Scheme {
   float maxLevel(const ParamValues& v) const override { return float(std::max(v.at("min_lod"), v.at("max_lod"))); }
   void validate(const ParamValues& v) const override {
     if (v.at("dmax") <= v.at("dmin"))
-      throw InputError("scheme 'distance': dmax (" + std::to_string(v.at("dmax")) + ") must be greater than dmin (" +
-                       std::to_string(v.at("dmin")) + ")");
+      throw InputError("scheme 'distance': dmax (" + num(v.at("dmax")) + ") must be greater than dmin (" +
+                       num(v.at("dmin")) + ")");
     if (v.at("min_lod") > v.at("max_lod"))
-      throw InputError("scheme 'distance': min_lod (" + std::to_string(v.at("min_lod")) +
-                       ") must not exceed max_lod (" + std::to_string(v.at("max_lod")) + ")");
+      throw InputError("scheme 'distance': min_lod (" + num(v.at("min_lod")) + ") must not exceed max_lod (" +
+                       num(v.at("max_lod")) + ")");
   }
 };
 

@@ -6,6 +6,7 @@
 // plane in world units with a centred deviation. Shaders: planefit.comp, planefit.tesc; CPU
 // reference: harness/terrain/plane_fit.cpp.
 #include <algorithm>
+#include <sstream>
 #include <string>
 
 #include "error.h"
@@ -15,6 +16,12 @@
 
 namespace lb {
 namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 class PlaneFitScheme : public Scheme {
  public:
@@ -50,11 +57,11 @@ class PlaneFitScheme : public Scheme {
   }
   void validate(const ParamValues& v) const override {
     if (v.at("dmax") <= v.at("dmin"))
-      throw InputError("scheme 'planefit': dmax (" + std::to_string(v.at("dmax")) + ") must be greater than dmin (" +
-                       std::to_string(v.at("dmin")) + ")");
+      throw InputError("scheme 'planefit': dmax (" + num(v.at("dmax")) + ") must be greater than dmin (" +
+                       num(v.at("dmin")) + ")");
     if (v.at("min_lod") > v.at("max_lod"))
-      throw InputError("scheme 'planefit': min_lod (" + std::to_string(v.at("min_lod")) +
-                       ") must not exceed max_lod (" + std::to_string(v.at("max_lod")) + ")");
+      throw InputError("scheme 'planefit': min_lod (" + num(v.at("min_lod")) + ") must not exceed max_lod (" +
+                       num(v.at("max_lod")) + ")");
   }
 };
 

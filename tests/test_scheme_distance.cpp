@@ -7,6 +7,7 @@
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
 #include "shaders/shared.h"
+#include "sweep/config.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -139,4 +140,17 @@ TEST_F(DistanceScheme, RejectsInvertedRanges) {
     EXPECT_NE(std::string(e.what()).find("dmax"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(r.setScheme(s, {{"dmin", 0}, {"dmax", 1}}));
+}
+
+// Config files reach the same cross-parameter check, naming the scheme's params object.
+TEST(DistanceConfig, InvertedRangeInAConfigIsAnInputError) {
+  const std::string text = R"({"name": "t", "paths": ["paths/flyover.csv"],
+    "schemes": [{"name": "distance", "params": {"dmin": [100, 900], "dmax": 800}}]})";
+  try {
+    parseConfig(text, "t.json", LODBENCH_SOURCE_DIR "/configs");
+    ADD_FAILURE() << "dmin 900 > dmax 800 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/schemes/0/params"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("dmax"), std::string::npos) << e.what();
+  }
 }
