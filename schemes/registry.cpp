@@ -9,6 +9,9 @@ const Scheme& interlockScheme();
 const Scheme& sphereRingsScheme();
 const Scheme& densityScheme();
 const Scheme& phongScheme();
+const Scheme& distanceScheme();
+const Scheme& referenceScheme();
+const Scheme& planeFitScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
@@ -18,6 +21,9 @@ const std::vector<const Scheme*>& allSchemes() {
       &sphereRingsScheme(),
       &densityScheme(),
       &phongScheme(),
+      &distanceScheme(),
+      &referenceScheme(),
+      &planeFitScheme(),
   };
   return schemes;
 }

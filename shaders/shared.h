@@ -9,10 +9,12 @@
 #define LB_BINDING_CAPTURE 4    // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
 #define LB_BINDING_SCHEME_BUF 5 // scheme storage buffer (e.g. tile adjacency)
 #define LB_BINDING_HISTOGRAM 7  // triangle-size histogram (measurement pass)
+#define LB_BINDING_SCHEME_IMAGE 6 // compute preprocessing only: the scheme texture as a storage image
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer
 #define LB_SCHEME_PARAM_VEC4S 4 // up to 16 scheme parameters, in declaration order
+#define LB_PLANE_FIT_BLOCK 16   // planefit: heightfield samples per block side (ch9 Listing 9.10 numthreads)
 
 #define LB_MODE_SHADED 0
 #define LB_MODE_HEATMAP 1
@@ -47,7 +49,18 @@ struct DrawPush {
   uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw
   uint32_t pad[3];
 };
+// Push constants of a scheme's compute preprocessing pass (shaders/*.comp define LB_COMPUTE_PASS).
+struct ComputePush {
+  glm::vec4 terrain;  // extent, grid patches per side, heightfield min height, max height
+  glm::vec4 params[LB_SCHEME_PARAM_VEC4S];  // the scheme's parameters, packed as in FrameUniforms
+};
+static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16, "push constant mirror");
 }  // namespace lb
+#elif defined(LB_COMPUTE_PASS)
+layout(push_constant) uniform ComputePush {
+  vec4 terrain;
+  vec4 params[LB_SCHEME_PARAM_VEC4S];
+} pass;
 #else
 layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
   mat4 viewProj;

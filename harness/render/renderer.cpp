@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "camera/camera_path.h"
+#include "render/compute_pass.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -268,6 +269,11 @@ std::vector<float> Renderer::capturedLevels() {
   finish();
   const auto* p = static_cast<const float*>(capture_.mapped);
   return std::vector<float>(p, p + capture_.size / sizeof(float));
+}
+
+SchemeTexture Renderer::readSchemeTexture() {
+  finish();
+  return {int(schemeTex_.width), int(schemeTex_.height), readImageRgba32f(ctx_, schemeTex_)};
 }
 
 }  // namespace lb

@@ -88,6 +88,8 @@ class Renderer {
   // Measurement passes, separate from timing frames (each waits for frames in flight).
   TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr);
   std::vector<float> renderErrorMap(const CameraPose& view, const CameraPose& lod);
+  // The scheme texture (CPU preprocessing or compute pass output) read back from the GPU.
+  SchemeTexture readSchemeTexture();
 
   const RenderSettings& settings() const { return settings_; }
   uint32_t patchCount() const { return patchCount_; }

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "render/compute_pass.h"
 #include "render/patch_grid.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -93,7 +94,8 @@ void Renderer::createTargets() {
   // Placeholder scheme resources so every binding is valid for schemes without preprocessing.
   float zero[4] = {0, 0, 0, 0};
   createImage(ctx_, schemeTex_, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT);
   uploadImage(ctx_, schemeTex_, zero, sizeof zero);
   createBufferWithData(ctx_, schemeBuf_, zero, sizeof zero, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
@@ -173,13 +175,30 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   destroyPipelines();
   scheme_ = &scheme;
   params_ = resolveParams(scheme.info(), params);
+  scheme.validate(params_);
   createGrid();
-  SchemeTexture tex = scheme.preprocess(terrain_, params_);
   destroyImage(ctx_, schemeTex_);
-  if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
-  createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), VK_FORMAT_R32G32B32A32_SFLOAT,
-              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-  uploadImage(ctx_, schemeTex_, tex.rgba.data(), tex.rgba.size() * sizeof(float));
+  // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
+  const VkImageUsageFlags texUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  if (!scheme.info().compute.empty()) {
+    TextureSize size = scheme.computeOutputSize(terrain_);
+    if (size.width < 1 || size.height < 1)
+      throw std::runtime_error("scheme '" + scheme.info().name + "' declares a compute pass but no output size");
+    createImage(ctx_, schemeTex_, uint32_t(size.width), uint32_t(size.height), VK_FORMAT_R32G32B32A32_SFLOAT,
+                texUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    FrameUniforms packed{};
+    scheme.update(packed, params_);
+    ComputePush push{};
+    push.terrain = glm::vec4(terrain_.extent, float(settings_.grid), terrain_.minHeight, terrain_.maxHeight);
+    std::memcpy(push.params, packed.params, sizeof push.params);
+    runComputePass(ctx_, scheme.info().compute, sampler_, height_.view, schemeTex_, push);
+  } else {
+    SchemeTexture tex = scheme.preprocess(terrain_, params_);
+    if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
+    createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), VK_FORMAT_R32G32B32A32_SFLOAT,
+                texUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    uploadImage(ctx_, schemeTex_, tex.rgba.data(), tex.rgba.size() * sizeof(float));
+  }
 
   VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
   VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

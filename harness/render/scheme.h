@@ -34,6 +34,9 @@ struct SchemeInfo {
   std::string tesc;                       // shader stem: shaders/<tesc>.tesc
   std::string tese = "terrain_quad";      // shared evaluation shader stem
   bool culls = false;                     // may output factor 0 for patches outside the frustum
+  // Compute preprocessing: shaders/<compute>.comp writes the scheme texture once in setScheme
+  // (instead of preprocess()); empty = none.
+  std::string compute;
 };
 
 using ParamValues = std::map<std::string, double>;
@@ -53,6 +56,10 @@ struct PatchGeometry {
   std::vector<float> schemeBuffer;  // optional; bound at LB_BINDING_SCHEME_BUF as std430 floats
 };
 
+struct TextureSize {
+  int width = 0, height = 0;
+};
+
 class Scheme {
  public:
   virtual ~Scheme() = default;
@@ -63,6 +70,11 @@ class Scheme {
   virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
   // Load-time patch layout; no vertices = the renderer's uniform grid (RenderSettings::grid).
   virtual PatchGeometry patchGeometry(const Heightfield&, const ParamValues&) const { return {}; }
+  // Size of the texture SchemeInfo::compute writes; the pass runs one workgroup per texel.
+  virtual TextureSize computeOutputSize(const Heightfield&) const { return {}; }
+  // Checks between parameters that ParamSpec ranges cannot express; throws InputError.
+  // Callers run it on resolveParams' result.
+  virtual void validate(const ParamValues&) const {}
   // Per-frame CPU work: packs parameters into the uniform block (override for more).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
 };

@@ -130,6 +130,14 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
       }
     e.variants = next;
   }
+  // Cross-parameter checks (e.g. dmin < dmax) need every parameter of a variant.
+  for (auto& pv : e.variants) {
+    try {
+      scheme->validate(resolveParams(scheme->info(), pv));
+    } catch (const InputError& err) {
+      r.fail(ptr + "/params", err.what());
+    }
+  }
   return e;
 }
 

@@ -1,0 +1,24 @@
+#pragma once
+// A scheme's one-off GPU preprocessing (design section 3): a compute shader reads the heightfield
+// and writes an RGBA32F image that the tessellation stages sample afterwards.
+#include <string>
+#include <vector>
+
+#include "vk/resources.h"
+
+namespace lb {
+
+struct Context;
+struct ComputePush;
+
+// Runs shaders/<stem>.comp once as output.width x output.height workgroups (one per texel) with
+// the heightfield at LB_BINDING_HEIGHT and `output` as a storage image at LB_BINDING_SCHEME_IMAGE.
+// `output` needs STORAGE and SAMPLED usage; it is left in SHADER_READ_ONLY_OPTIMAL. Waits for the GPU.
+void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, VkImageView height, const Image& output,
+                    const ComputePush& push);
+
+// Copies an RGBA32F image in SHADER_READ_ONLY_OPTIMAL (with TRANSFER_SRC usage) to the host,
+// width * height * 4 floats, and leaves it in SHADER_READ_ONLY_OPTIMAL. Set-up and tests only.
+std::vector<float> readImageRgba32f(Context& ctx, const Image& image);
+
+}  // namespace lb

@@ -1,0 +1,59 @@
+// practical-d3d11-ch9 "Dynamic Tessellation", 9.1.1 Listing 9.7 (ComputePatchLOD) with the patch
+// midpoint of Listing 9.6; amd-detail-tessellation-11 "Distance-adaptive Tessellation" for the
+// per-edge factors that keep neighbours crack-free. fractional_odd as in the book (section 9.1.1).
+// Shaders: shaders/distance.tesc, shaders/distance_lod.glsl.
+#include <algorithm>
+#include <sstream>
+#include <string>
+
+#include "error.h"
+#include "render/scheme.h"
+
+namespace lb {
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+class Distance : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "distance",
+        "lerp(min_lod, max_lod) by the camera distance of patch and edge midpoints between dmin and dmax",
+        "practical-d3d11-ch9: 9.1.1 Listing 9.7 ComputePatchLOD; amd-detail-tessellation-11: Distance-adaptive "
+        "Tessellation (per-edge factors)",
+        {{"min_lod", 1, 1, 64, false, "level at distance dmax and beyond (minMaxLOD.x)"},
+         {"max_lod", 32, 1, 64, false, "level at distance dmin and nearer (minMaxLOD.y)"},
+         {"dmin", 50, 0, 1e6, false, "world distance at which the level reaches max_lod (minMaxDistance.x)"},
+         {"dmax", 1000, 0, 1e6, false, "world distance at which the level falls to min_lod (minMaxDistance.y)"}},
+        Topology::Quad4,
+        Partitioning::FractionalOdd,
+        "distance",
+        "terrain_quad",
+        true,
+    };
+    return kInfo;
+  }
+  float maxLevel(const ParamValues& v) const override { return float(std::max(v.at("min_lod"), v.at("max_lod"))); }
+  void validate(const ParamValues& v) const override {
+    if (v.at("dmax") <= v.at("dmin"))
+      throw InputError("scheme 'distance': dmax (" + num(v.at("dmax")) + ") must be greater than dmin (" +
+                       num(v.at("dmin")) + ")");
+    if (v.at("min_lod") > v.at("max_lod"))
+      throw InputError("scheme 'distance': min_lod (" + num(v.at("min_lod")) + ") must not exceed max_lod (" +
+                       num(v.at("max_lod")) + ")");
+  }
+};
+
+}  // namespace
+
+const Scheme& distanceScheme() {
+  static const Distance scheme;
+  return scheme;
+}
+
+}  // namespace lb

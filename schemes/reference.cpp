@@ -1,0 +1,32 @@
+// Accuracy baseline (design sections 4 and 6): the densest crack-free tessellation the device
+// allows over the whole grid, integer level 64 (Vulkan's guaranteed maxTessellationGenerationLevel)
+// on every edge and inside, no culling. Ground truth for the image metrics. Shader: reference.tesc.
+#include "render/scheme.h"
+
+namespace lb {
+namespace {
+
+class Reference : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        "reference",
+        "integer level 64 on every edge and inside, no culling (ground truth for image metrics)",
+        "accuracy baseline: design sections 4 and 6",
+        {},
+        Topology::Quad4,
+        Partitioning::Integer,
+        "reference",
+    };
+    return kInfo;
+  }
+};
+
+}  // namespace
+
+const Scheme& referenceScheme() {
+  static const Reference scheme;
+  return scheme;
+}
+
+}  // namespace lb
