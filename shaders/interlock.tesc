@@ -28,7 +28,7 @@ float cellLod(vec3 midpoint) {
   float minLod = schemeParam(2), maxLod = schemeParam(3);
   precise vec3 d = midpoint - frame.lodEye.xyz;
   precise float dist = sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
-  // min_distance >= max_distance degenerates to a step at min_distance instead of dividing by 0.
+  // dmin >= dmax degenerates to a step at dmin instead of dividing by 0.
   precise float scaled = clamp((dist - minDistance) / max(maxDistance - minDistance, 1e-6), 0.0, 1.0);
   precise float lod = minLod + (1.0 - scaled) * (maxLod - minLod);  // HLSL lerp(minLod, maxLod, 1 - d)
   return clamp(lod, 1.0, LB_MAX_FACTOR);

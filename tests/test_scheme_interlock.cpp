@@ -116,7 +116,7 @@ TEST_F(InterlockScheme, SharedEdgesBitIdenticalOnShippedPathsWithoutCulling) {
   r.setScheme(*findScheme("interlock"), {{"cull", 0}});
   auto poses = shippedPathPoses();
   poses.push_back(lbtest::poseAt({-100, 250, -100}, {500, 0, 500}));
-  poses.push_back(lbtest::poseAt({520, 40, 480}, {900, 0, 100}, 90));  // inside min_distance: saturated LODs
+  poses.push_back(lbtest::poseAt({520, 40, 480}, {900, 0, 100}, 90));  // inside dmin: saturated LODs
   for (size_t k = 0; k < poses.size(); ++k) {
     int compared = checkInterlocked(captureLevels(r, poses[k]), n, poses[k], {}, "pose " + std::to_string(k));
     EXPECT_EQ(compared, 2 * n * (n - 1)) << "pose " << k;
@@ -128,7 +128,7 @@ TEST_F(InterlockScheme, SharedEdgesBitIdenticalWithCullingAndOtherRanges) {
   const int n = 16;
   Renderer r(gpu(), testTerrain(), {160, 90, n});
   const LodParams wide{0, 800, 2, 64};
-  r.setScheme(*findScheme("interlock"), {{"min_distance", 0}, {"max_distance", 800}, {"min_lod", 2}, {"max_lod", 64}});
+  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 800}, {"min_lod", 2}, {"max_lod", 64}});
   int culledFrames = 0;
   for (const CameraPose& pose : shippedPathPoses()) {
     auto lv = captureLevels(r, pose);
@@ -140,7 +140,7 @@ TEST_F(InterlockScheme, SharedEdgesBitIdenticalWithCullingAndOtherRanges) {
   EXPECT_GT(culledFrames, 0) << "some frame should cull patches, else this test repeats the one above";
 }
 
-// The camera sits half a cell off the patch centre, away from side k. With min_distance between the
+// The camera sits half a cell off the patch centre, away from side k. With dmin between the
 // near midpoints' distances and the far one's, the own patch and three neighbours saturate at
 // max_lod (= 16 exactly) and only the neighbour across side k is lower: only outer[k] may drop.
 TEST_F(InterlockScheme, LowerNeighbourLandsOnTheOuterLevelFacingIt) {
@@ -160,8 +160,8 @@ TEST_F(InterlockScheme, LowerNeighbourLandsOnTheOuterLevelFacingIt) {
     }
     ASSERT_GT(far, nearMax + 10.0) << "side " << side << ": the set-up needs one clearly farther neighbour";
     LodParams p{(nearMax + far) / 2, (nearMax + far) / 2 + 1000, 1, 16};
-    r.setScheme(*findScheme("interlock"), {{"min_distance", p.minDistance},
-                                           {"max_distance", p.maxDistance},
+    r.setScheme(*findScheme("interlock"), {{"dmin", p.minDistance},
+                                           {"dmax", p.maxDistance},
                                            {"min_lod", 1},
                                            {"max_lod", 16},
                                            {"cull", 0}});
@@ -220,7 +220,7 @@ int enclosedClearPixels(const std::vector<uint8_t>& px, int w, int h) {
 TEST_F(InterlockScheme, NoCracksInShadedImages) {
   const int n = 16, w = 320, h = 180;
   Renderer r(gpu(), testTerrain(), {w, h, n});
-  r.setScheme(*findScheme("interlock"), {{"min_distance", 0}, {"max_distance", 700}, {"max_lod", 9}});
+  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 700}, {"max_lod", 9}});
   for (const CameraPose& pose : shippedPathPoses()) {
     auto px = r.renderImage(pose, pose, RenderMode::Shaded);
     EXPECT_EQ(enclosedClearPixels(px, w, h), 0);
