@@ -37,6 +37,10 @@ void countTriangle() {
   // log2 binning: area in [2^(k-4), 2^(k-3)) goes to bin k.
   int bin = signedArea < 0.125 ? 0 : clamp(int(floor(log2(signedArea))) + 4, 1, LB_HIST_BINS - 1);
   atomicAdd(hist.counts[bin], 1u);
+  // 64-bit fixed-point sum from two 32-bit atomics: carry into the high word on wrap-around.
+  uint add = uint(min(signedArea * LB_HIST_AREA_SCALE, 4.0e9));
+  uint before = atomicAdd(hist.counts[LB_HIST_AREA_LO], add);
+  if (before > 0xFFFFFFFFu - add) atomicAdd(hist.counts[LB_HIST_AREA_HI], 1u);
 }
 
 void main() {

@@ -27,7 +27,10 @@
 #define LB_HIST_BINS 15
 #define LB_HIST_OFFSCREEN 15
 #define LB_HIST_BACKFACING 16
-#define LB_HIST_COUNTERS 17
+#define LB_HIST_AREA_LO 17     // exact sum of binned areas in 1/256 px^2, as a 64-bit pair
+#define LB_HIST_AREA_HI 18
+#define LB_HIST_AREA_SCALE 256.0
+#define LB_HIST_COUNTERS 19
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>

@@ -65,10 +65,13 @@ TEST(ImageMetrics, CrackPixelsFindHolesNotSilhouettes) {
   // A coarser LOD's horizon sits lower: an 8-pixel-wide, 3-deep dip is a silhouette difference.
   for (int y = 8; y < 11; ++y)
     for (int x = 10; x < 18; ++x) setPx(img, x, y, 255, 0, 255);
+  setPx(img, 30, 8, 255, 0, 255);  // a one-pixel notch in the horizon: connected to the sky
   for (int x = 5; x < 25; ++x) setPx(img, x, 20, 255, 0, 255);  // a 20-pixel crack inside the terrain
+  for (int y = 25; y < 30; ++y) setPx(img, 35, y, 255, 0, 255);  // runs off the image: not a hole
   std::vector<uint8_t> mask;
   EXPECT_EQ(crackPixels(img, ref, &mask), 20);
   EXPECT_EQ(mask[size_t(20 * w + 5)], 1);
   EXPECT_EQ(mask[size_t(9 * w + 12)], 0);
+  EXPECT_EQ(mask[size_t(8 * w + 30)], 0);
   EXPECT_EQ(crackPixels(ref, ref), 0);
 }

@@ -48,6 +48,8 @@ TEST_F(Measurement, HistogramOfAKnownFlatGridIsExact) {
   EXPECT_EQ(hist.bins[size_t(bin)], uint64_t(2 * n * n * level * level)) << "bin " << bin;
   EXPECT_EQ(hist.backfacing, 0u) << "seen from above, the terrain faces the camera";
   EXPECT_EQ(hist.offscreen, 0u);
+  // Exact area sum: every triangle has the same area, in steps of 1/256 px^2.
+  EXPECT_NEAR(hist.areaSum, 2.0 * n * n * level * level * area, 2.0 * n * n * level * level / 256.0);
 }
 
 TEST_F(Measurement, ErrorMapIsZeroForReferenceDenseAndLargerWhenCoarse) {

@@ -100,26 +100,34 @@ bool isClear(const RgbaImage& img, int x, int y) {
   return p[0] == 255 && p[1] == 0 && p[2] == 255;
 }
 
-long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask, int reach) {
+long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask) {
   checkSameSize(img, reference);
-  int w = img.width, h = img.height;
-  if (mask) mask->assign(size_t(w) * size_t(h), 0);
-  auto terrainAt = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && !isClear(img, x, y); };
-  auto enclosed = [&](int x, int y, int dx, int dy) {
-    bool before = false, after = false;
-    for (int s = 1; s <= reach; ++s) {
-      before = before || terrainAt(x - dx * s, y - dy * s);
-      after = after || terrainAt(x + dx * s, y + dy * s);
-    }
-    return before && after;
+  const int w = img.width, h = img.height;
+  // Flood fill the clear colour from the border; what it cannot reach is enclosed by terrain.
+  std::vector<uint8_t> outside(size_t(w) * size_t(h), 0);
+  std::vector<int> stack;
+  auto push = [&](int x, int y) {
+    size_t i = size_t(y) * size_t(w) + size_t(x);
+    if (x < 0 || y < 0 || x >= w || y >= h || outside[i] || !isClear(img, x, y)) return;
+    outside[i] = 1;
+    stack.push_back(int(i));
   };
+  for (int x = 0; x < w; ++x) push(x, 0), push(x, h - 1);
+  for (int y = 0; y < h; ++y) push(0, y), push(w - 1, y);
+  while (!stack.empty()) {
+    int i = stack.back();
+    stack.pop_back();
+    int x = i % w, y = i / w;
+    push(x + 1, y), push(x - 1, y), push(x, y + 1), push(x, y - 1);
+  }
+  if (mask) mask->assign(outside.size(), 0);
   long count = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      if (!isClear(img, x, y) || isClear(reference, x, y)) continue;
-      if (!enclosed(x, y, 1, 0) && !enclosed(x, y, 0, 1)) continue;
+      size_t i = size_t(y) * size_t(w) + size_t(x);
+      if (!isClear(img, x, y) || outside[i] || isClear(reference, x, y)) continue;
       ++count;
-      if (mask) (*mask)[size_t(y) * size_t(w) + size_t(x)] = 1;
+      if (mask) (*mask)[i] = 1;
     }
   return count;
 }

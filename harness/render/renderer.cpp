@@ -255,6 +255,7 @@ TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const Camer
   for (int i = 0; i < LB_HIST_BINS; ++i) h.bins[size_t(i)] = c[i];
   h.offscreen = c[LB_HIST_OFFSCREEN];
   h.backfacing = c[LB_HIST_BACKFACING];
+  h.areaSum = double((uint64_t(c[LB_HIST_AREA_HI]) << 32) | c[LB_HIST_AREA_LO]) / LB_HIST_AREA_SCALE;
   return h;
 }
 

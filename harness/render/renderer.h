@@ -27,6 +27,7 @@ enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2, Error = 3, Histo
 struct TriangleHistogram {
   std::array<uint64_t, 15> bins{};  // < 1/8 px, [1/8, 1/4), ..., [512, 1024), >= 1024 px
   uint64_t offscreen = 0, backfacing = 0;
+  double areaSum = 0;  // exact sum of the binned (on-screen, front-facing) areas in px^2 (1/256 px^2 steps)
   uint64_t total() const;
 };
 
@@ -92,6 +93,7 @@ class Renderer {
   SchemeTexture readSchemeTexture();
 
   const RenderSettings& settings() const { return settings_; }
+  const ParamValues& params() const { return params_; }  // resolved: defaults filled in
   uint32_t patchCount() const { return patchCount_; }
   uint32_t patchesPerDraw() const { return patchesPerDraw_; }
   uint32_t drawCount() const { return (patchCount_ + patchesPerDraw_ - 1) / patchesPerDraw_; }

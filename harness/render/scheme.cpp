@@ -14,6 +14,11 @@ void Scheme::update(FrameUniforms& frame, const ParamValues& values) const {
     frame.params[i / 4][int(i % 4)] = float(values.at(specs[i].name));
 }
 
+double Scheme::targetAreaPx(const ParamValues& values) const {
+  auto it = values.find("tri_size");
+  return it == values.end() ? 0.0 : 0.5 * it->second * it->second;
+}
+
 ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
   ParamValues out;
   for (auto& p : info.params) out[p.name] = p.defaultValue;

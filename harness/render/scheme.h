@@ -75,6 +75,9 @@ class Scheme {
   // Checks between parameters that ParamSpec ranges cannot express; throws InputError.
   // Callers run it on resolveParams' result.
   virtual void validate(const ParamValues&) const {}
+  // Target triangle area in px^2 for screen-space schemes, 0 when the scheme has none. Default:
+  // a `tri_size` parameter t (target triangle width) gives t^2 / 2 (NVIDIA: size 6 -> 18 px).
+  virtual double targetAreaPx(const ParamValues& values) const;
   // Per-frame CPU work: packs parameters into the uniform block (override for more).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
 };

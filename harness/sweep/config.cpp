@@ -161,7 +161,8 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   }
   Reader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
-                     "repetitions", "terrain", "terrains", "path", "paths", "schemes", "images", "description"});
+                     "repetitions", "terrain", "terrains", "path", "paths", "schemes", "images", "measure",
+                     "description"});
   Config c;
   c.file = file;
   c.raw = j;
@@ -231,11 +232,30 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
       c.images.modes.clear();
       for (size_t i = 0; i < im["modes"].size(); ++i) {
         std::string m = r.string(im["modes"][i], "/images/modes/" + std::to_string(i));
-        if (m != "shaded" && m != "heatmap" && m != "wireframe")
-          r.fail("/images/modes/" + std::to_string(i), "'" + m + "' is not one of shaded, heatmap, wireframe");
+        if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
+          r.fail("/images/modes/" + std::to_string(i),
+                 "'" + m + "' is not one of shaded, heatmap, wireframe, error, cracks");
         c.images.modes.push_back(m);
       }
     }
+  }
+  if (j.contains("measure")) {
+    const json& me = j["measure"];
+    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold"});
+    c.measure.every = me.contains("every") ? r.integer(me["every"], "/measure/every", 0, 1000000) : 10;
+    if (me.contains("passes")) {
+      if (!me["passes"].is_array()) r.fail("/measure/passes", "expected an array of pass names");
+      c.measure.passes.clear();
+      for (size_t i = 0; i < me["passes"].size(); ++i) {
+        std::string p = r.string(me["passes"][i], "/measure/passes/" + std::to_string(i));
+        if (!allMeasurePasses().count(p))
+          r.fail("/measure/passes/" + std::to_string(i),
+                 "'" + p + "' is not one of histogram, error, image, cracks, popping, surplus");
+        c.measure.passes.insert(p);
+      }
+    }
+    if (me.contains("diff_threshold"))
+      c.measure.diffThreshold = r.integer(me["diff_threshold"], "/measure/diff_threshold", 0, 255);
   }
   return c;
 }

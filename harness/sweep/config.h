@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/scheme.h"
+#include "sweep/measure.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -18,7 +19,7 @@ struct SchemeEntry {
 
 struct ImageRequest {
   std::vector<int> frames;          // path frame indices (negative counts from the end)
-  std::vector<std::string> modes;   // shaded | heatmap | wireframe
+  std::vector<std::string> modes;   // shaded | heatmap | wireframe | error | cracks
 };
 
 struct Config {
@@ -35,6 +36,7 @@ struct Config {
   std::vector<std::string> paths;  // resolved file paths
   std::vector<SchemeEntry> schemes;
   ImageRequest images;
+  MeasureSpec measure;     // measurement passes (off unless "measure" is given)
   nlohmann::json raw;      // the config as written, recorded in results
 };
 

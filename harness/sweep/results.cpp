@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
+#include <map>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -10,6 +12,7 @@
 #include <stdexcept>
 
 #include "metrics/stats.h"
+#include "shaders/shared.h"
 #include "sweep/config.h"
 #include "vk/context.h"
 
@@ -91,6 +94,9 @@ static json summaryOf(const std::vector<double>& v) {
           {"min", s.min},       {"max", s.max}, {"stddev", s.stddev}};
 }
 
+// JSON has no NaN: unavailable metrics are null.
+static json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
 json caseSummary(const CaseResult& r) {
   if (r.frames.empty()) return json::object();
   std::vector<double> gpu, cpu, tris, patches, tes, frags;
@@ -104,32 +110,80 @@ json caseSummary(const CaseResult& r) {
   }
   json g = summaryOf(gpu);
   double med = g["median"].get<double>();
-  return {{"frames", r.frames.size()},
-          {"gpu_ms", g},
-          {"cpu_ms", summaryOf(cpu)},
-          {"fps_median", med > 0 ? 1000.0 / med : 0.0},
-          {"fps_mean", g["mean"].get<double>() > 0 ? 1000.0 / g["mean"].get<double>() : 0.0},
-          {"triangles", summaryOf(tris)},
-          {"patches", summaryOf(patches)},
-          {"tes_invocations", summaryOf(tes)},
-          {"fragment_invocations", summaryOf(frags)}};
+  json out = {{"frames", r.frames.size()},
+              {"gpu_ms", g},
+              {"cpu_ms", summaryOf(cpu)},
+              {"fps_median", med > 0 ? 1000.0 / med : 0.0},
+              {"fps_mean", g["mean"].get<double>() > 0 ? 1000.0 / g["mean"].get<double>() : 0.0},
+              {"triangles", summaryOf(tris)},
+              {"patches", summaryOf(patches)},
+              {"tes_invocations", summaryOf(tes)},
+              {"fragment_invocations", summaryOf(frags)}};
+  if (r.metrics.empty()) return out;
+  // Per metric: statistics over the measured frames where it is available.
+  std::map<std::string, std::vector<double>> series;
+  std::map<std::string, std::pair<double, int>> worst;  // metric -> (value, frame)
+  std::vector<uint64_t> histTotal(LB_HIST_BINS, 0);
+  uint64_t offscreen = 0, backfacing = 0;
+  int saturatedFrames = 0;
+  for (const FrameMetrics& m : r.metrics) {
+    for (auto& [k, v] : m.values) {
+      if (k.rfind("hist_", 0) == 0 || !std::isfinite(v)) continue;
+      series[k].push_back(v);
+      auto& w = worst[k];
+      if (series[k].size() == 1 || v > w.first) w = {v, m.frame};
+      if (k == "saturated_patches" && v > 0) ++saturatedFrames;
+    }
+    if (m.hasHistogram) {
+      for (size_t i = 0; i < histTotal.size(); ++i) histTotal[i] += m.histogram.bins[i];
+      offscreen += m.histogram.offscreen;
+      backfacing += m.histogram.backfacing;
+    }
+  }
+  for (auto& [k, v] : series) out[k] = summaryOf(v);
+  out["measured_frames"] = r.metrics.size();
+  out["hist_total"] = histTotal;
+  out["hist_offscreen_total"] = offscreen;
+  out["hist_backfacing_total"] = backfacing;
+  out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
+  json wf = json::object();
+  for (const char* k : {"cracks_pixels", "cracks_analytic", "pop_mean", "err_p95_px"})
+    if (worst.count(k)) wf[k] = worst[k].second;
+  out["worst_frames"] = wf;
+  return out;
 }
 
 json caseJson(const Case& c, const CaseResult& r) {
+  std::map<int, const FrameMetrics*> measured;
+  for (auto& m : r.metrics) measured[m.frame] = &m;
   json frames = json::array();
-  for (auto& f : r.frames)
-    frames.push_back({{"frame", f.frame},
-                      {"gpu_ms", f.gpuMs},
-                      {"cpu_ms", f.cpuMs},
-                      {"fps", f.gpuMs > 0 ? 1000.0 / f.gpuMs : 0.0},
-                      {"ia_vertices", f.stats.iaVertices},
-                      {"ia_primitives", f.stats.iaPrimitives},
-                      {"vs_invocations", f.stats.vsInvocations},
-                      {"patches", f.stats.tcsPatches},
-                      {"tes_invocations", f.stats.tesInvocations},
-                      {"clip_invocations", f.stats.clipInvocations},
-                      {"clip_primitives", f.stats.clipPrimitives},
-                      {"fragment_invocations", f.stats.fsInvocations}});
+  for (auto& f : r.frames) {
+    json rec = {{"frame", f.frame},
+                {"gpu_ms", f.gpuMs},
+                {"cpu_ms", f.cpuMs},
+                {"fps", f.gpuMs > 0 ? 1000.0 / f.gpuMs : 0.0},
+                {"ia_vertices", f.stats.iaVertices},
+                {"ia_primitives", f.stats.iaPrimitives},
+                {"vs_invocations", f.stats.vsInvocations},
+                {"patches", f.stats.tcsPatches},
+                {"tes_invocations", f.stats.tesInvocations},
+                {"clip_invocations", f.stats.clipInvocations},
+                {"clip_primitives", f.stats.clipPrimitives},
+                {"fragment_invocations", f.stats.fsInvocations}};
+    auto it = measured.find(f.frame);
+    if (it != measured.end()) {
+      const FrameMetrics& m = *it->second;
+      if (m.hasHistogram) {
+        rec["hist"] = m.histogram.bins;
+        rec["hist_offscreen"] = m.histogram.offscreen;
+        rec["hist_backfacing"] = m.histogram.backfacing;
+      }
+      for (auto& [k, v] : m.values)
+        if (k.rfind("hist_", 0) != 0) rec[k] = number(v);
+      measured.erase(it);  // repetitions replay the same frames: measurements attach to the first
+    }
+    frames.push_back(rec);
+  }
   json params = json::object();
   for (auto& [k, v] : c.params) params[k] = v;
   return {{"schema_version", kSchemaVersion},
@@ -144,23 +198,39 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"status", r.status},
           {"reason", r.reason},
           {"seconds", r.seconds},
+          {"target_area_px", r.targetAreaPx > 0 ? json(r.targetAreaPx) : json(nullptr)},
           {"images", r.images},
           {"summary", caseSummary(r)},
           {"frames", frames}};
 }
 
+static const char* const kTimingColumns[] = {"frame", "gpu_ms", "cpu_ms", "patches", "tes_invocations",
+                                             "clip_invocations", "clip_primitives", "fragment_invocations"};
+
 std::string framesCsvHeader() {
-  return "case_id,frame,gpu_ms,cpu_ms,patches,tes_invocations,clip_invocations,clip_primitives,fragment_invocations\n";
+  std::string h = "case_id";
+  for (const char* c : kTimingColumns) h += std::string(",") + c;
+  for (auto& c : metricColumns()) h += "," + c;
+  return h + "\n";
 }
 
-std::string framesCsvRows(const std::string& caseId, const CaseResult& r) {
-  std::ostringstream s;
-  s.precision(9);
-  for (auto& f : r.frames)
-    s << caseId << ',' << f.frame << ',' << f.gpuMs << ',' << f.cpuMs << ',' << f.stats.tcsPatches << ','
-      << f.stats.tesInvocations << ',' << f.stats.clipInvocations << ',' << f.stats.clipPrimitives << ','
-      << f.stats.fsInvocations << '\n';
-  return s.str();
+std::string framesCsvRows(const json& cj) {
+  std::string out;
+  std::string id = cj.value("case_id", "");
+  for (const json& f : cj["frames"]) {
+    out += id;
+    for (const char* c : kTimingColumns) out += "," + (f.contains(c) ? f[c].dump() : std::string());
+    for (const std::string& c : metricColumns()) {
+      out += ",";
+      if (c.rfind("hist_", 0) == 0 && std::isdigit(static_cast<unsigned char>(c[5]))) {
+        if (f.contains("hist")) out += f["hist"][size_t(std::stoi(c.substr(5)))].dump();
+      } else if (f.contains(c) && !f[c].is_null()) {
+        out += f[c].dump();
+      }
+    }
+    out += "\n";
+  }
+  return out;
 }
 
 }  // namespace lb

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/renderer.h"
+#include "sweep/measure.h"
 
 namespace lb {
 
@@ -20,6 +21,8 @@ struct CaseResult {
   std::string status = "ok";  // ok | failed | skipped
   std::string reason;
   std::vector<FrameResult> frames;
+  std::vector<FrameMetrics> metrics;  // measurement frames (images dropped after use)
+  double targetAreaPx = 0;            // the scheme's target triangle area, 0 = none
   std::vector<std::string> images;  // relative to the run dir
   double seconds = 0;
 };
@@ -32,6 +35,7 @@ nlohmann::json runContext(const Context& ctx, const Config& config);
 nlohmann::json caseSummary(const CaseResult& r);
 nlohmann::json caseJson(const Case& c, const CaseResult& r);
 std::string framesCsvHeader();
-std::string framesCsvRows(const std::string& caseId, const CaseResult& r);
+// One CSV row per frame record of a case file (metric columns empty on unmeasured frames).
+std::string framesCsvRows(const nlohmann::json& caseFile);
 
 }  // namespace lb

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 
 #include "camera/camera_path.h"
@@ -36,7 +37,17 @@ static double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress) {
+static void progressLine(bool progress, const char* what, int done, int total, double elapsed) {
+  // On a terminal the line updates in place; in logs, one line per tenth of the work.
+  bool tty = isatty(fileno(stderr));
+  if (!progress || !(tty ? done % 10 == 0 || done == total : done % std::max(1, total / 10) == 0)) return;
+  std::fprintf(stderr, "%s    %s %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", what, done, total, elapsed,
+               elapsed / done * (total - done), tty ? "   " : "\n");
+  std::fflush(stderr);
+}
+
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
+                   ReferenceCache& refs) {
   auto t0 = std::chrono::steady_clock::now();
   CaseResult result;
   const Scheme* scheme = findScheme(c.scheme);
@@ -61,29 +72,62 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p);
       for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
-      int done = rep * frames + f + 1;
-      // On a terminal the line updates in place; in logs, one line per tenth of the case.
-      bool tty = isatty(fileno(stderr));
-      if (progress && (tty ? done % 10 == 0 || done == total : done % std::max(1, total / 10) == 0)) {
-        double el = secondsSince(t0);
-        std::fprintf(stderr, "%s    frame %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", done, total, el,
-                     el / done * (total - done), tty ? "   " : "\n");
-        std::fflush(stderr);
-      }
+      progressLine(progress, "frame", rep * frames + f + 1, total, secondsSince(t0));
     }
   renderer.finish();
   for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
+  result.targetAreaPx = scheme->targetAreaPx(renderer.params());
+
+  // Measurement passes run after every timed frame, so they cannot perturb the timings.
+  const MeasureSpec& ms = config.measure;
+  std::map<int, FrameMetrics> kept;  // measured frames that images were asked for
+  auto wantsImage = [&](int frame) {
+    for (int f : config.images.frames)
+      if ((f < 0 ? frames + f : f) == frame) return true;
+    return false;
+  };
+  if (ms.every > 0) {
+    int count = (frames + ms.every - 1) / ms.every, done = 0;
+    auto tm = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; f += ms.every) {
+      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, ms, refs, f,
+                                    pose(std::max(0, f - 1)), pose(f));
+      if (wantsImage(f)) kept[f] = m;
+      m.shaded = {};
+      m.reference = {};
+      m.errorMap.clear();
+      m.crackMask.clear();
+      result.metrics.push_back(std::move(m));
+      progressLine(progress, "measured frame", ++done, count, secondsSince(tm));
+    }
+  }
 
   // Images are separate passes after the timed frames, never inside them.
   for (int f : config.images.frames) {
     int frame = f < 0 ? frames + f : f;
     if (frame < 0 || frame >= frames) continue;
     for (auto& modeName : config.images.modes) {
-      RenderMode mode = parseRenderMode(modeName);
-      if (mode == RenderMode::Wireframe && !ctx.enabledFeatures.fillModeNonSolid) continue;
-      auto px = renderer.renderImage(pose(frame), pose(frame), mode);
       std::string name = c.id + "_f" + std::to_string(frame) + "_" + modeName + ".png";
-      writePng(imageDir + "/" + name, c.width, c.height, px);
+      if (modeName == "error" || modeName == "cracks") {
+        if (!kept.count(frame)) {
+          MeasureSpec one = ms;
+          one.every = 1;
+          one.passes = {modeName == "error" ? "error" : "cracks"};
+          kept[frame] = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, one, refs,
+                                     frame, pose(std::max(0, frame - 1)), pose(frame));
+        }
+        const FrameMetrics& m = kept[frame];
+        if (modeName == "error" && !m.errorMap.empty())
+          writePng(imageDir + "/" + name, c.width, c.height, errorImage(m.errorMap, c.width, c.height).px);
+        else if (modeName == "cracks" && !m.crackMask.empty())
+          writePng(imageDir + "/" + name, c.width, c.height, crackImage(m.shaded, m.crackMask).px);
+        else
+          continue;
+      } else {
+        RenderMode mode = parseRenderMode(modeName);
+        if (mode == RenderMode::Wireframe && !ctx.enabledFeatures.fillModeNonSolid) continue;
+        writePng(imageDir + "/" + name, c.width, c.height, renderer.renderImage(pose(frame), pose(frame), mode));
+      }
       result.images.push_back("images/" + name);
     }
   }
@@ -115,11 +159,7 @@ static void writeAggregates(const std::string& dir, const json& context) {
     cases.push_back({{"case_id", cj["case_id"]}, {"scheme", cj["scheme"]}, {"params", cj["params"]},
                      {"terrain", cj["terrain"]["label"]}, {"path", cj["path"]}, {"resolution", cj["resolution"]},
                      {"status", cj["status"]}, {"reason", cj["reason"]}, {"summary", cj["summary"]}});
-    for (auto& f : cj["frames"])
-      csv += cj["case_id"].get<std::string>() + "," + f["frame"].dump() + "," + f["gpu_ms"].dump() + "," +
-             f["cpu_ms"].dump() + "," + f["patches"].dump() + "," + f["tes_invocations"].dump() + "," +
-             f["clip_invocations"].dump() + "," + f["clip_primitives"].dump() + "," +
-             f["fragment_invocations"].dump() + "\n";
+    csv += framesCsvRows(cj);
   }
   writeFileAtomic(dir + "/frames.csv", csv);
   json summary = {{"schema_version", kSchemaVersion}, {"context", context}, {"cases", cases}};
@@ -141,6 +181,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
 
   auto cases = expandCases(config);
   auto t0 = std::chrono::steady_clock::now();
+  ReferenceCache refs;
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -160,7 +201,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     }
     CaseResult r;
     try {
-      r = runCase(ctx, c, config, totals.dir + "/images", options.progress);
+      r = runCase(ctx, c, config, totals.dir + "/images", options.progress, refs);
     } catch (const std::exception& e) {
       r.status = "failed";
       r.reason = e.what();

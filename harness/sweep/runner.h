@@ -24,7 +24,8 @@ struct RunTotals {
 
 RunTotals runSweep(const Config& config, const RunOptions& options);
 // One case on an existing device context (used by tests and the sweep).
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress);
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
+                   ReferenceCache& refs);
 RenderMode parseRenderMode(const std::string& name);
 const char* renderModeName(RenderMode m);
 

@@ -1,0 +1,137 @@
+#include "sweep/measure.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "metrics/stats.h"
+#include "schemes/registry.h"
+#include "shaders/shared.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+
+static const double kNan = std::nan("");
+
+const std::set<std::string>& allMeasurePasses() {
+  static const std::set<std::string> passes = {"histogram", "error", "image", "cracks", "popping", "surplus"};
+  return passes;
+}
+
+const RgbaImage& ReferenceCache::image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
+                                       const RenderSettings& settings, const CameraPose& pose) {
+  std::ostringstream key;
+  key.precision(9);
+  key << terrainKey << '|' << settings.width << 'x' << settings.height << '|' << settings.grid << '|' << pose.eye.x << ','
+      << pose.eye.y << ',' << pose.eye.z << '|' << pose.target.x << ',' << pose.target.y << ',' << pose.target.z << '|'
+      << pose.fovDeg;
+  auto it = images_.find(key.str());
+  if (it != images_.end()) return it->second;
+  Renderer ref(ctx, terrain, settings);
+  ref.setScheme(*findScheme("reference"), {});
+  RgbaImage img{settings.width, settings.height, ref.renderImage(pose, pose, RenderMode::Shaded)};
+  return images_[key.str()] = std::move(img);
+}
+
+std::vector<std::string> metricColumns() {
+  std::vector<std::string> c;
+  for (int i = 0; i < LB_HIST_BINS; ++i) c.push_back("hist_" + std::to_string(i));
+  for (const char* n : {"hist_offscreen", "hist_backfacing", "tri_area_mean", "tri_area_median", "tri_frac_under_1px",
+                        "tri_frac_near_target", "err_mean_px", "err_p95_px", "err_max_px", "img_psnr_db", "img_ssim",
+                        "img_mad", "img_frac_over", "cracks_analytic", "cracks_pixels", "pop_mean", "pop_p99",
+                        "pop_changed", "surplus", "saturated_patches"})
+    c.push_back(n);
+  return c;
+}
+
+// Patches whose largest captured level reached the partitioning's maximum.
+static double saturatedPatches(const std::vector<float>& levels, Partitioning p) {
+  float cap = p == Partitioning::FractionalOdd ? 63.0f : 64.0f;
+  long n = 0;
+  for (size_t i = 0; i + LB_CAPTURE_STRIDE <= levels.size(); i += LB_CAPTURE_STRIDE) {
+    float m = 0;
+    for (int k = 0; k < 6; ++k) m = std::max(m, levels[i + size_t(k)]);
+    n += m >= cap;
+  }
+  return double(n);
+}
+
+FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const ParamValues& params,
+                          const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
+                          ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current) {
+  FrameMetrics m;
+  m.frame = frame;
+  auto set = [&](const std::string& k, double v) { m.values.emplace_back(k, v); };
+  const RenderSettings& rs = r.settings();
+  // Live frame with factor capture: the basis for image metrics, cracks and saturation.
+  m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded)};
+  std::vector<float> levels = r.capturedLevels();
+
+  if (spec.on("histogram")) {
+    m.histogram = r.measureHistogram(current, current);
+    m.hasHistogram = true;
+    const TriangleHistogram& h = m.histogram;
+    uint64_t binned = 0, under1 = 0;
+    for (size_t i = 0; i < h.bins.size(); ++i) {
+      binned += h.bins[i];
+      if (i <= 3) under1 += h.bins[i];  // bins 0..3 hold areas below 1 px
+    }
+    for (size_t i = 0; i < h.bins.size(); ++i) set("hist_" + std::to_string(i), double(h.bins[i]));
+    set("hist_offscreen", double(h.offscreen));
+    set("hist_backfacing", double(h.backfacing));
+    set("tri_area_mean", binned ? h.areaSum / double(binned) : kNan);
+    set("tri_frac_under_1px", binned ? double(under1) / double(binned) : kNan);
+  }
+  if (spec.on("error")) {
+    m.errorMap = r.renderErrorMap(current, current);
+    std::vector<double> e;
+    for (float v : m.errorMap)
+      if (v >= 0) e.push_back(v);
+    Summary s = summarize(e);
+    set("err_mean_px", e.empty() ? kNan : s.mean);
+    set("err_p95_px", e.empty() ? kNan : s.p95);
+    set("err_max_px", e.empty() ? kNan : s.max);
+  }
+  if (spec.on("image") || spec.on("cracks")) m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+  if (spec.on("image")) {
+    ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);
+    set("img_psnr_db", ie.psnrDb);
+    set("img_ssim", ie.ssim);
+    set("img_mad", ie.meanAbsDiff);
+    set("img_frac_over", ie.fractionOver);
+  }
+  if (spec.on("cracks")) set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
+  set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
+  (void)params;
+  (void)previous;
+  return m;
+}
+
+RgbaImage errorImage(const std::vector<float>& error, int width, int height) {
+  RgbaImage img{width, height, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
+  for (size_t i = 0; i < error.size(); ++i) {
+    uint8_t* p = &img.px[i * 4];
+    if (error[i] < 0) {
+      p[0] = 255, p[1] = 0, p[2] = 255;
+      continue;
+    }
+    // sqrt scale so sub-pixel errors stay visible: 0 px black, 8 px and more white.
+    auto v = uint8_t(std::lround(255.0 * std::min(1.0, std::sqrt(double(error[i]) / 8.0))));
+    p[0] = p[1] = p[2] = v;
+  }
+  return img;
+}
+
+RgbaImage crackImage(const RgbaImage& frame, const std::vector<uint8_t>& mask) {
+  RgbaImage img = frame;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    uint8_t* p = &img.px[i * 4];
+    if (mask[i]) {
+      p[0] = 255, p[1] = 0, p[2] = 0;
+    } else {
+      p[0] = uint8_t(p[0] / 3), p[1] = uint8_t(p[1] / 3), p[2] = uint8_t(p[2] / 3);
+    }
+  }
+  return img;
+}
+
+}  // namespace lb

@@ -1,0 +1,62 @@
+#pragma once
+// Measurement passes of one frame (design section 6), run after a case's timing frames so they
+// never perturb the timings: histogram, screen-space error, image error against `reference`,
+// cracks, popping, surplus.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "camera/camera_path.h"
+#include "metrics/image_metrics.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+struct Context;
+struct Heightfield;
+
+struct MeasureSpec {
+  int every = 0;  // measure every n-th frame (0 = no measurement frames)
+  std::set<std::string> passes = {"histogram", "error", "image", "cracks", "popping", "surplus"};
+  int diffThreshold = 16;  // per-channel difference (0..255) counted by img_frac_over
+  bool on(const std::string& pass) const { return every > 0 && passes.count(pass) > 0; }
+};
+const std::set<std::string>& allMeasurePasses();
+
+// Metric values in the order of docs/results-format.md; NaN = unavailable.
+struct FrameMetrics {
+  int frame = 0;
+  std::vector<std::pair<std::string, double>> values;
+  bool hasHistogram = false;
+  TriangleHistogram histogram;
+  RgbaImage shaded, reference;    // kept for crack masks and image strips
+  std::vector<float> errorMap;
+  std::vector<uint8_t> crackMask;
+};
+
+// Renders `reference` images once per camera and keeps them for every case of a sweep.
+class ReferenceCache {
+ public:
+  const RgbaImage& image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
+                         const RenderSettings& settings, const CameraPose& pose);
+
+ private:
+  std::map<std::string, RgbaImage> images_;
+};
+
+FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme, const ParamValues& params,
+                          const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
+                          ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current);
+
+// Column names of the measurement part of frames.csv, in order.
+std::vector<std::string> metricColumns();
+// RGBA visualisations: error map (0 px black .. >= 8 px white, clear colour where no terrain)
+// and crack mask (red crack pixels over a dimmed frame).
+RgbaImage errorImage(const std::vector<float>& error, int width, int height);
+RgbaImage crackImage(const RgbaImage& frame, const std::vector<uint8_t>& mask);
+
+}  // namespace lb
