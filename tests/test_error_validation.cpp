@@ -1,0 +1,196 @@
+// The GPU screen-space error map (shaders/terrain.frag, LB_MODE_ERROR) checked against a CPU ray
+// caster on a terrain whose tessellated surface is known exactly.
+#include <algorithm>
+#include <cmath>
+
+#include "gpu_fixture.h"
+#include "metrics/oracle.h"
+
+using namespace lb;
+using lbtest::gpu;
+
+namespace {
+
+constexpr float kExtent = 1000;
+constexpr int kSamples = 257;
+constexpr float kA = 2e-3f;  // h = kA (x - 500)^2: a trough, 500 high at the x borders
+
+Heightfield trough() {
+  Heightfield hf;
+  hf.width = hf.height = kSamples;
+  hf.extent = kExtent;
+  hf.h.resize(size_t(kSamples) * kSamples);
+  for (int z = 0; z < kSamples; ++z)
+    for (int x = 0; x < kSamples; ++x) {
+      float wx = kExtent * float(x) / float(kSamples - 1) - 500.0f;
+      hf.h[size_t(z) * kSamples + size_t(x)] = kA * wx * wx;
+    }
+  hf.updateRange();
+  return hf;
+}
+
+glm::dvec2 toPixels(const glm::dmat4& viewProj, glm::dvec3 p, int w, int h) {
+  glm::dvec4 c = viewProj * glm::dvec4(p, 1.0);
+  return glm::dvec2(c.x, c.y) / c.w * glm::dvec2(0.5 * w, 0.5 * h);
+}
+
+// The heights depend on x only, so every triangle of a uniform tessellation is a plane through
+// vertices at two consecutive vertex x positions with heights h(x_k), h(x_k+1): the surface is
+// exactly the piecewise-linear s(x) through (x_k, h(x_k)), whatever the triangulation.
+struct Polyline {
+  std::vector<double> x, y;
+  // First hit of the ray o + t d (t > 0) with s over [0, extent]^2, false on a miss. s is convex
+  // and the eye is above it, so the ray leaves the region above s at most once: no occlusion.
+  bool hit(glm::dvec3 o, glm::dvec3 d, glm::dvec3& p) const {
+    double best = INFINITY;
+    for (size_t m = 0; m + 1 < x.size(); ++m) {
+      double slope = (y[m + 1] - y[m]) / (x[m + 1] - x[m]);
+      // o.y + t d.y = y[m] + slope (o.x + t d.x - x[m])  is linear in t
+      double denom = d.y - slope * d.x;
+      if (denom == 0) continue;
+      double t = (y[m] + slope * (o.x - x[m]) - o.y) / denom;
+      double px = o.x + t * d.x, pz = o.z + t * d.z;
+      if (t > 0 && t < best && px >= x[m] && px <= x[m + 1] && pz >= 0 && pz <= kExtent) best = t;
+    }
+    if (!std::isfinite(best)) return false;
+    p = o + best * d;
+    return true;
+  }
+};
+
+}  // namespace
+
+class ErrorValidation : public lbtest::GpuTest {};
+
+TEST_F(ErrorValidation, ErrorMapMatchesCpuRayCastOnPiecewiseLinearSurface) {
+  const Heightfield hf = trough();
+  const int w = 320, h = 180, grid = 2, level = 3;
+  Renderer r(gpu(), hf, {w, h, grid});
+  r.setScheme(*findScheme("uniform"), {{"level", level}});
+  CameraPose pose = lbtest::poseAt({300, 400, -200}, {500, 100, 500});
+  std::vector<float> gpuErr = r.renderErrorMap(pose, pose);
+  ASSERT_EQ(gpuErr.size(), size_t(w) * size_t(h));
+
+  // Vertex x positions as terrain_quad.tese computes them (float mix of the patch corners).
+  Polyline s;
+  for (int i = 0; i < grid; ++i)
+    for (int k = (i == 0 ? 0 : 1); k <= level; ++k) {
+      float x0 = kExtent * float(i) / float(grid), x1 = kExtent * float(i + 1) / float(grid);
+      float u = float(k) / float(level);
+      float x = x0 * (1.0f - u) + x1 * u;
+      s.x.push_back(x);
+      s.y.push_back(hf.sample(x, 0.0f));
+    }
+
+  CameraMatrices cam = cameraMatrices(pose, float(w) / float(h), kExtent);
+  glm::dmat4 viewProj = glm::dmat4(cam.proj) * glm::dmat4(cam.view);
+  glm::dmat4 inv = glm::inverse(viewProj);
+  int compared = 0, coverageDisagrees = 0;
+  double sum = 0, worst = 0;
+  for (int py = 3; py < h; py += 7)
+    for (int px = 3; px < w; px += 7) {
+      // Pixel centre in Vulkan NDC (y down), unprojected at depth 0 and 1.
+      double nx = (px + 0.5) / w * 2 - 1, ny = (py + 0.5) / h * 2 - 1;
+      glm::dvec4 a = inv * glm::dvec4(nx, ny, 0, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
+      glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::dvec3(b) / b.w - o;
+      glm::dvec3 p;
+      bool cpuHit = s.hit(o, d, p);
+      float g = gpuErr[size_t(py) * w + size_t(px)];
+      if (!cpuHit || g < 0) {
+        // Only pixel centres within a hair of the terrain's border may disagree on coverage.
+        coverageDisagrees += cpuHit != (g >= 0);
+        continue;
+      }
+      glm::dvec3 truePoint(p.x, hf.sample(float(p.x), float(p.z)), p.z);
+      double expected = glm::length(toPixels(viewProj, p, w, h) - toPixels(viewProj, truePoint, w, h));
+      // Tolerance: the rasterizer snaps vertices to 1/256 px, moving the sampled surface point by
+      // <= 1/512 px on screen, where the error changes by far less than 1 px per px; float
+      // projection of ~1000-unit coordinates adds ~1e-4 px. 1e-2 px + 1e-3 relative covers both.
+      EXPECT_NEAR(g, expected, 1e-2 + 1e-3 * expected) << "pixel " << px << "," << py;
+      worst = std::max(worst, std::abs(g - expected));
+      sum += expected;
+      ++compared;
+    }
+  std::printf(
+      "[error validation] %d pixels compared, mean error %.3f px, worst |gpu - cpu| %.2e px, "
+      "%d coverage disagreements\n",
+      compared, sum / compared, worst, coverageDisagrees);
+  EXPECT_GT(compared, 200);
+  EXPECT_GT(sum / compared, 1.0) << "level 3 must be visibly coarse, or the comparison proves little";
+  EXPECT_LE(coverageDisagrees, 3);
+}
+
+TEST_F(ErrorValidation, ReferenceDensityHasOnlyTheTriangulationTwist) {
+  // Level 64 on a 2 x 2 grid puts a vertex on every texel of the 129^2 test terrain (spacing
+  // 1000 / 128 both), so the only difference from the bilinear heightfield is inside each texel
+  // cell: two triangles instead of a bilinear patch, at most |h00 - h10 - h01 + h11| / 4.
+  const Heightfield& hf = lbtest::testTerrain();
+  ASSERT_EQ(hf.width, 129);
+  const int w = 160, h = 90;
+  Renderer r(gpu(), hf, {w, h, 2});
+  r.setScheme(*findScheme("uniform"), {{"level", 64}});
+  CameraPose pose = lbtest::poseAt({500, 900, -300}, {500, 0, 500});
+  std::vector<float> err = r.renderErrorMap(pose, pose);
+
+  // Bound per texel cell: world error <= |twist| / 4 anywhere in it, times the largest pixel length
+  // of a vertical step that long at the cell's corners and centre (+5% for the variation in
+  // between: cells are 7.8 units wide, 600+ units from the eye), plus the 1e-2 px of rasterization.
+  CameraMatrices cam = cameraMatrices(pose, float(w) / float(h), hf.extent);
+  glm::dmat4 viewProj = glm::dmat4(cam.proj) * glm::dmat4(cam.view);
+  const double texel = hf.extent / double(hf.width - 1);
+  double bound = 0, maxTwist = 0;
+  for (int z = 0; z + 1 < hf.height; ++z)
+    for (int x = 0; x + 1 < hf.width; ++x) {
+      double err = std::abs(hf.at(x, z) - hf.at(x + 1, z) - hf.at(x, z + 1) + hf.at(x + 1, z + 1)) / 4.0;
+      maxTwist = std::max(maxTwist, 4 * err);
+      double scale = 0;
+      for (glm::dvec2 c :
+           {glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1), glm::dvec2(0.5, 0.5)}) {
+        glm::dvec3 p((x + c.x) * texel, hf.sample(float((x + c.x) * texel), float((z + c.y) * texel)),
+                     (z + c.y) * texel);
+        scale = std::max(
+            scale, glm::length(toPixels(viewProj, p + glm::dvec3(0, err, 0), w, h) - toPixels(viewProj, p, w, h)));
+      }
+      bound = std::max(bound, 1.05 * scale);
+    }
+  bound += 1e-2;
+
+  double maxErr = 0, sum = 0;
+  int covered = 0;
+  for (float e : err)
+    if (e >= 0) maxErr = std::max(maxErr, double(e)), sum += e, ++covered;
+  std::printf("[error validation] reference density: max %.4f px, mean %.5f px, bound %.4f px (twist %.3f)\n", maxErr,
+              sum / covered, bound, maxTwist);
+  EXPECT_GT(covered, w * h / 4);
+  EXPECT_LE(maxErr, bound);
+  EXPECT_LT(sum / covered, 0.02) << "reference density must be about exact on average";
+  EXPECT_LT(bound, 0.5) << "the twist of this terrain stays well under a pixel from this camera";
+}
+
+TEST_F(ErrorValidation, OracleLevelMeetsTheBoundOnTheGpu) {
+  // On the trough the oracle's bilinear stand-in for the tessellated surface is exact, and the
+  // interpolation error only peaks at texel columns (both surfaces are piecewise linear in x), so
+  // the oracle's samples see the worst case up to the pixel scale varying between texel rows.
+  // Uniform tessellation at the largest level the oracle asks for must then meet the bound on the
+  // GPU, and one level less (coarser where the most demanding patch needs it) must not.
+  const Heightfield hf = trough();
+  const int w = 320, h = 180, grid = 4;
+  const double bound = 1.0;
+  CameraPose pose = lbtest::poseAt({300, 400, -200}, {500, 100, 500});
+  OracleResult oracle = surplusOracle(hf, grid, cameraMatrices(pose, float(w) / float(h), kExtent), w, h, bound);
+  int maxLevel = *std::max_element(oracle.levels.begin(), oracle.levels.end());
+  ASSERT_GT(maxLevel, 2) << "the case must need more than the coarsest levels";
+  EXPECT_EQ(oracle.saturated, 0);
+
+  Renderer r(gpu(), hf, {w, h, grid});
+  auto maxError = [&](int level) {
+    r.setScheme(*findScheme("uniform"), {{"level", level}});
+    std::vector<float> err = r.renderErrorMap(pose, pose);
+    return double(*std::max_element(err.begin(), err.end()));
+  };
+  double atLevel = maxError(maxLevel), below = maxError(maxLevel - 1);
+  std::printf("[error validation] oracle max level %d: GPU max error %.3f px there, %.3f px one level below\n",
+              maxLevel, atLevel, below);
+  EXPECT_LE(atLevel, bound * 1.02 + 1e-2);
+  EXPECT_GT(below, bound);
+}
