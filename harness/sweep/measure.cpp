@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "metrics/histogram_stats.h"
+#include "metrics/oracle.h"
 #include "metrics/stats.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
@@ -63,23 +65,23 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   auto set = [&](const std::string& k, double v) { m.values.emplace_back(k, v); };
   const RenderSettings& rs = r.settings();
   // Live frame with factor capture: the basis for image metrics, cracks and saturation.
-  m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded)};
+  FrameResult live;
+  m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded, &live)};
   std::vector<float> levels = r.capturedLevels();
 
   if (spec.on("histogram")) {
     m.histogram = r.measureHistogram(current, current);
     m.hasHistogram = true;
     const TriangleHistogram& h = m.histogram;
-    uint64_t binned = 0, under1 = 0;
-    for (size_t i = 0; i < h.bins.size(); ++i) {
-      binned += h.bins[i];
-      if (i <= 3) under1 += h.bins[i];  // bins 0..3 hold areas below 1 px
-    }
+    double target = scheme.targetAreaPx(params);
+    HistogramStats hs = histogramStats(h, target > 0 ? target : kNan, h.areaSum);
     for (size_t i = 0; i < h.bins.size(); ++i) set("hist_" + std::to_string(i), double(h.bins[i]));
     set("hist_offscreen", double(h.offscreen));
     set("hist_backfacing", double(h.backfacing));
-    set("tri_area_mean", binned ? h.areaSum / double(binned) : kNan);
-    set("tri_frac_under_1px", binned ? double(under1) / double(binned) : kNan);
+    set("tri_area_mean", hs.meanArea);
+    set("tri_area_median", hs.medianArea);
+    set("tri_frac_under_1px", hs.fracUnder1px);
+    set("tri_frac_near_target", hs.fracNearTarget);
   }
   if (spec.on("error")) {
     m.errorMap = r.renderErrorMap(current, current);
@@ -90,6 +92,12 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
+    // Surplus: the oracle's smallest uniform level per patch meeting this frame's p95 error.
+    if (spec.on("surplus") && !e.empty()) {
+      CameraMatrices cam = cameraMatrices(current, float(rs.width) / float(rs.height), terrain.extent);
+      OracleResult o = surplusOracle(terrain, rs.grid, cam, rs.width, rs.height, s.p95);
+      set("surplus", o.triangles ? double(live.stats.clipInvocations) / double(o.triangles) : kNan);
+    }
   }
   if (spec.on("image") || spec.on("cracks")) m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
   if (spec.on("image")) {
