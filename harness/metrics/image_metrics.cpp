@@ -113,10 +113,33 @@ long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<u
     }
     return before && after;
   };
+  // Clear pixels of img connected to the background (clear in both images): silhouette gaps.
+  std::vector<uint8_t> background(size_t(w) * size_t(h), 0);
+  std::vector<int> stack;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (isClear(img, x, y) && isClear(reference, x, y)) {
+        background[size_t(y) * size_t(w) + size_t(x)] = 1;
+        stack.push_back(y * w + x);
+      }
+  while (!stack.empty()) {
+    int p = stack.back();
+    stack.pop_back();
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        int x = p % w + dx, y = p / w + dy;
+        if (x < 0 || y < 0 || x >= w || y >= h || !isClear(img, x, y)) continue;
+        uint8_t& b = background[size_t(y) * size_t(w) + size_t(x)];
+        if (b) continue;
+        b = 1;
+        stack.push_back(y * w + x);
+      }
+  }
   long count = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       if (!isClear(img, x, y) || isClear(reference, x, y)) continue;
+      if (background[size_t(y) * size_t(w) + size_t(x)]) continue;
       if (!enclosed(x, y, 1, 0) && !enclosed(x, y, 0, 1)) continue;
       ++count;
       if (mask) (*mask)[size_t(y) * size_t(w) + size_t(x)] = 1;
