@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "error.h"
+#include "metrics/cracks.h"
 #include "render/patch_grid.h"
 #include "render/scheme.h"
 #include "terrain/heightfield.h"
@@ -103,6 +104,11 @@ class SphereRings : public Scheme {
     }
     static_assert(kFloatsPerPatch == 8, "matches RingPatch in shaders/sphere_rings.tesc");
     return g;
+  }
+
+  // Ring boundaries are T-junctions: the grid rule does not apply; compare vertex patterns.
+  long crackEdges(const Heightfield& hf, const ParamValues& v, const std::vector<float>& levels) const override {
+    return layoutCrackEdges(patchGeometry(hf, v), levels);
   }
 };
 

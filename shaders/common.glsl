@@ -32,7 +32,8 @@ vec3 terrainNormal(vec2 worldXZ) {
   return normalize(vec3((hl - hr) / (2.0 * texel.x), 1.0, (hd - hu) / (2.0 * texel.y)));
 }
 
-// True when the world-space box is entirely outside one LOD frustum plane.
+// True when the world-space box is entirely outside one culling frustum plane (the LOD camera's
+// unless Renderer::setCullCamera says otherwise).
 bool boxOutsideFrustum(vec3 lo, vec3 hi) {
   for (int i = 0; i < 6; ++i) {
     vec4 p = frame.frustum[i];

@@ -41,7 +41,8 @@ struct FrameUniforms {
   glm::mat4 lodView;    // LOD camera (equals the projection camera except in popping passes)
   glm::mat4 lodProj;
   glm::vec4 lodEye;     // xyz: LOD camera position
-  glm::vec4 frustum[6]; // LOD camera frustum planes (xyz normal pointing inside, w), world space
+  glm::vec4 frustum[6]; // culling frustum planes (xyz normal inside, w), world space: the LOD camera's, or
+                        // the projection camera's (Renderer::setCullCamera)
   glm::vec4 viewport;   // width, height, 1/width, 1/height in pixels
   glm::vec4 terrain;    // extent, grid patches per side, heightfield width, heightfield height
   glm::vec4 light;      // xyz: direction towards the light

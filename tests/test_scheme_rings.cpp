@@ -2,11 +2,10 @@
 // seed's claim that only power-of-2 levels make tessellation patterns meet across ring boundaries.
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
-#include <tuple>
 
 #include "gpu_fixture.h"
+#include "metrics/edge_pattern.h"
 #include "shaders/shared.h"
 
 using namespace lb;
@@ -23,92 +22,6 @@ const Scheme& rings() {
 
 PatchGeometry layout(const ParamValues& given) {
   return rings().patchGeometry(testTerrain(), resolveParams(rings().info(), given));
-}
-
-struct Rect {
-  float x0, z0, x1, z1;
-};
-Rect patchRect(const PatchGeometry& g, size_t p) {
-  glm::vec2 c0 = g.vertices[g.indices[p * 4]], c2 = g.vertices[g.indices[p * 4 + 2]];
-  return {c0.x, c0.y, c2.x, c2.y};
-}
-
-// Side s of a patch in outer-level order (-x, -z, +x, +z) as (axis the edge runs along, fixed
-// coordinate, lower end, upper end). Corners sit on an exact binary lattice, so floats compare.
-using Edge = std::tuple<int, float, float, float>;
-Edge side(const Rect& r, int s) {
-  switch (s) {
-    case 0:
-      return {1, r.x0, r.z0, r.z1};
-    case 1:
-      return {0, r.z0, r.x0, r.x1};
-    case 2:
-      return {1, r.x1, r.z0, r.z1};
-    default:
-      return {0, r.z1, r.x0, r.x1};
-  }
-}
-
-// Vulkan spec, "Tessellator Spacing", fractional_even_spacing: the level is clamped to [2, 64] and
-// rounded up to the nearest even integer n; the edge is cut into n - 2 equal segments and two
-// shorter equal ones, placed symmetrically, whose length falls monotonically with n - f (equal to
-// the others at n - f = 0). With segments of 1/f the two short ones are (f - n + 2) / (2 f) each.
-// Their placement is implementation-dependent; here they meet at the middle (new vertices grow out
-// of the centre). Returns the vertex parameters in [0, 1].
-std::vector<double> fractionalEvenVertices(double level) {
-  double f = std::clamp(level, 2.0, 64.0);
-  int n = 2 * int(std::ceil(f / 2.0));
-  double full = 1.0 / f, part = (f - (n - 2)) / (2.0 * f);
-  std::vector<double> segments(size_t(n - 2) / 2, full);
-  segments.push_back(part);
-  segments.push_back(part);
-  segments.insert(segments.end(), size_t(n - 2) / 2, full);
-  std::vector<double> v{0.0};
-  for (double s : segments) v.push_back(v.back() + s);
-  v.back() = 1.0;
-  return v;
-}
-
-// True when the larger edge's vertices are exactly the union of its two half-size neighbours'.
-bool patternsMatch(double large, double smallLo, double smallHi) {
-  std::vector<double> a = fractionalEvenVertices(large), b;
-  for (double t : fractionalEvenVertices(smallLo)) b.push_back(0.5 * t);
-  for (double t : fractionalEvenVertices(smallHi)) b.push_back(0.5 + 0.5 * t);
-  std::sort(b.begin(), b.end());
-  b.erase(std::unique(b.begin(), b.end(), [](double x, double y) { return std::abs(x - y) < 1e-9; }), b.end());
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::abs(a[i] - b[i]) > 1e-9) return false;
-  return true;
-}
-
-// Every place where one patch edge meets two half-size patch edges: (large patch, its side,
-// lower small patch, its side, upper small patch, its side).
-struct Boundary {
-  size_t large;
-  int largeSide;
-  size_t lo;
-  int loSide;
-  size_t hi;
-  int hiSide;
-};
-std::vector<Boundary> ringBoundaries(const PatchGeometry& g) {
-  const size_t n = g.bounds.size();
-  std::map<Edge, std::vector<std::pair<size_t, int>>> edges;
-  for (size_t p = 0; p < n; ++p)
-    for (int s = 0; s < 4; ++s) edges[side(patchRect(g, p), s)].push_back({p, s});
-  std::vector<Boundary> out;
-  for (size_t p = 0; p < n; ++p)
-    for (int s = 0; s < 4; ++s) {
-      auto [axis, fixed, a, b] = side(patchRect(g, p), s);
-      float mid = 0.5f * (a + b);
-      auto lo = edges.find({axis, fixed, a, mid}), hi = edges.find({axis, fixed, mid, b});
-      if (lo == edges.end() || hi == edges.end()) continue;
-      EXPECT_EQ(lo->second.size(), 1u);  // a half edge belongs to exactly one (smaller) patch
-      EXPECT_EQ(hi->second.size(), 1u);
-      out.push_back({p, s, lo->second[0].first, lo->second[0].second, hi->second[0].first, hi->second[0].second});
-    }
-  return out;
 }
 
 }  // namespace
@@ -136,7 +49,7 @@ TEST(SphereRingsLayout, PatchCountsTileSizesAndAdjacencyScalars) {
     int twice = 0, half = 0;
     for (size_t p = 0; p < n; ++p) {
       const float* rp = &g.schemeBuffer[p * kFloatsPerPatch];
-      Rect r = patchRect(g, p);
+      PatchRect r = patchRect(g, p);
       int ring = ringAt(0.5 * (r.x0 + r.x1), 0.5 * (r.z0 + r.z1));
       double size = tile0 / 8 * std::ldexp(1.0, ring);  // tiles double ring by ring
       ASSERT_EQ(rp[6], float(ring));
@@ -165,12 +78,12 @@ TEST(SphereRingsLayout, PatchCountsTileSizesAndAdjacencyScalars) {
     // Per ring boundary: 4 sides x 8 tiles x 8 patches see a larger neighbour, 4 x 4 x 8 a smaller one.
     EXPECT_EQ(twice, 256 * (rcount - 1));
     EXPECT_EQ(half, 128 * (rcount - 1));
-    auto boundaries = ringBoundaries(g);
+    auto boundaries = quadPatchEdges(g).half;
     EXPECT_EQ(boundaries.size(), size_t(half));
     for (auto& b : boundaries) {  // the adjacency scalars describe exactly these edges
-      EXPECT_EQ(g.schemeBuffer[b.large * kFloatsPerPatch + size_t(b.largeSide)], 0.5f);
-      EXPECT_EQ(g.schemeBuffer[b.lo * kFloatsPerPatch + size_t(b.loSide)], 2.0f);
-      EXPECT_EQ(g.schemeBuffer[b.hi * kFloatsPerPatch + size_t(b.hiSide)], 2.0f);
+      EXPECT_EQ(g.schemeBuffer[b.large.patch * kFloatsPerPatch + size_t(b.large.side)], 0.5f);
+      EXPECT_EQ(g.schemeBuffer[b.lo.patch * kFloatsPerPatch + size_t(b.lo.side)], 2.0f);
+      EXPECT_EQ(g.schemeBuffer[b.hi.patch * kFloatsPerPatch + size_t(b.hi.side)], 2.0f);
     }
   }
 }
@@ -185,7 +98,7 @@ TEST(SphereRingsLayout, SharedCornersAndClipping) {
   PatchGeometry big = layout({{"rings", 1}, {"tile_size", 0.25}});
   EXPECT_EQ(big.bounds.size(), 32u * 32u);
   for (size_t p = 0; p < big.bounds.size(); ++p) {
-    Rect r = patchRect(big, p);
+    PatchRect r = patchRect(big, p);
     EXPECT_TRUE(r.x0 >= 0 && r.z0 >= 0 && r.x1 <= 1000 && r.z1 <= 1000);
     EXPECT_LE(big.bounds[p].x, testTerrain().sample(r.x0, r.z0));
     EXPECT_GE(big.bounds[p].y, testTerrain().sample(0.5f * (r.x0 + r.x1), 0.5f * (r.z0 + r.z1)));
@@ -225,9 +138,10 @@ TEST_F(SphereRingsGpu, PowerOfTwoClampRemovesBoundaryMismatches) {
       for (int s = 0; s < 6; ++s) ASSERT_TRUE(level(p, s) == 0 || (level(p, s) >= 1 && level(p, s) <= 64));
     int compared = 0, mismatched = 0, odd = 0;
     std::set<float> smallLevels;
-    for (const Boundary& b : ringBoundaries(g)) {
-      if (!visible(b.large) || !visible(b.lo) || !visible(b.hi)) continue;
-      float large = level(b.large, b.largeSide), small0 = level(b.lo, b.loSide), small1 = level(b.hi, b.hiSide);
+    for (const HalfBoundary& b : quadPatchEdges(g).half) {
+      if (!visible(b.large.patch) || !visible(b.lo.patch) || !visible(b.hi.patch)) continue;
+      float large = level(b.large.patch, b.large.side), small0 = level(b.lo.patch, b.lo.side),
+            small1 = level(b.hi.patch, b.hi.side);
       ++compared;
       // Both sides derive their level from the same large edge: integers with large = 2 x small.
       EXPECT_EQ(small0, small1);
@@ -238,7 +152,7 @@ TEST_F(SphereRingsGpu, PowerOfTwoClampRemovesBoundaryMismatches) {
       }
       smallLevels.insert(small0);
       odd += int(small0) % 2;
-      mismatched += !patternsMatch(large, small0, small1);
+      mismatched += !fractionalEvenPatternsMatch(large, small0, small1);
     }
     EXPECT_GT(compared, 40);
     if (pow2) {
@@ -260,17 +174,11 @@ TEST_F(SphereRingsGpu, EqualSizeNeighboursShareLevels) {
   auto pose = lbtest::poseAt({-100, 400, -100}, {500, 0, 500});
   r.renderImage(pose, pose, RenderMode::Shaded);
   std::vector<float> lv = r.capturedLevels();
-  std::map<Edge, std::pair<size_t, int>> first;
   int compared = 0;
-  for (size_t p = 0; p < g.bounds.size(); ++p) {
-    if (lv[p * LB_CAPTURE_STRIDE + 4] == 0) continue;
-    for (int s = 0; s < 4; ++s) {
-      auto [it, added] = first.try_emplace(side(patchRect(g, p), s), p, s);
-      if (added) continue;
-      EXPECT_EQ(lv[p * LB_CAPTURE_STRIDE + size_t(s)],
-                lv[it->second.first * LB_CAPTURE_STRIDE + size_t(it->second.second)]);
-      ++compared;
-    }
+  for (const auto& [a, b] : quadPatchEdges(g).equal) {
+    if (lv[a.patch * LB_CAPTURE_STRIDE + 4] == 0 || lv[b.patch * LB_CAPTURE_STRIDE + 4] == 0) continue;
+    EXPECT_EQ(lv[a.patch * LB_CAPTURE_STRIDE + size_t(a.side)], lv[b.patch * LB_CAPTURE_STRIDE + size_t(b.side)]);
+    ++compared;
   }
   EXPECT_GT(compared, 1000);
 }

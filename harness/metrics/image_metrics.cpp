@@ -100,34 +100,49 @@ bool isClear(const RgbaImage& img, int x, int y) {
   return p[0] == 255 && p[1] == 0 && p[2] == 255;
 }
 
-long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask) {
+long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask, int reach) {
   checkSameSize(img, reference);
-  const int w = img.width, h = img.height;
-  // Flood fill the clear colour from the border; what it cannot reach is enclosed by terrain.
-  std::vector<uint8_t> outside(size_t(w) * size_t(h), 0);
-  std::vector<int> stack;
-  auto push = [&](int x, int y) {
-    size_t i = size_t(y) * size_t(w) + size_t(x);
-    if (x < 0 || y < 0 || x >= w || y >= h || outside[i] || !isClear(img, x, y)) return;
-    outside[i] = 1;
-    stack.push_back(int(i));
+  int w = img.width, h = img.height;
+  if (mask) mask->assign(size_t(w) * size_t(h), 0);
+  auto terrainAt = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && !isClear(img, x, y); };
+  auto enclosed = [&](int x, int y, int dx, int dy) {
+    bool before = false, after = false;
+    for (int s = 1; s <= reach; ++s) {
+      before = before || terrainAt(x - dx * s, y - dy * s);
+      after = after || terrainAt(x + dx * s, y + dy * s);
+    }
+    return before && after;
   };
-  for (int x = 0; x < w; ++x) push(x, 0), push(x, h - 1);
-  for (int y = 0; y < h; ++y) push(0, y), push(w - 1, y);
+  // Clear pixels of img connected to the background (clear in both images): silhouette gaps.
+  std::vector<uint8_t> background(size_t(w) * size_t(h), 0);
+  std::vector<int> stack;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (isClear(img, x, y) && isClear(reference, x, y)) {
+        background[size_t(y) * size_t(w) + size_t(x)] = 1;
+        stack.push_back(y * w + x);
+      }
   while (!stack.empty()) {
-    int i = stack.back();
+    int p = stack.back();
     stack.pop_back();
-    int x = i % w, y = i / w;
-    push(x + 1, y), push(x - 1, y), push(x, y + 1), push(x, y - 1);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        int x = p % w + dx, y = p / w + dy;
+        if (x < 0 || y < 0 || x >= w || y >= h || !isClear(img, x, y)) continue;
+        uint8_t& b = background[size_t(y) * size_t(w) + size_t(x)];
+        if (b) continue;
+        b = 1;
+        stack.push_back(y * w + x);
+      }
   }
-  if (mask) mask->assign(outside.size(), 0);
   long count = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      size_t i = size_t(y) * size_t(w) + size_t(x);
-      if (!isClear(img, x, y) || outside[i] || isClear(reference, x, y)) continue;
+      if (!isClear(img, x, y) || isClear(reference, x, y)) continue;
+      if (background[size_t(y) * size_t(w) + size_t(x)]) continue;
+      if (!enclosed(x, y, 1, 0) && !enclosed(x, y, 0, 1)) continue;
       ++count;
-      if (mask) (*mask)[i] = 1;
+      if (mask) (*mask)[size_t(y) * size_t(w) + size_t(x)] = 1;
     }
   return count;
 }

@@ -26,10 +26,12 @@ double ssim(const RgbaImage& a, const RgbaImage& b);
 // The clear colour (magenta) marks pixels no terrain covers.
 bool isClear(const RgbaImage& img, int x, int y);
 
-// Crack pixels: clear colour in `img` that is a hole in the terrain, i.e. not connected through
-// clear-colour pixels (4-neighbourhood) to the image border, and where the crack-free `reference`
-// shows terrain. Silhouette differences stay connected to the sky and are not counted; a crack
-// that runs into the sky or off the image is missed. Returns the count; mask is 0/1 per pixel.
-long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask = nullptr);
+// Crack pixels: clear colour in `img` where the crack-free `reference` shows terrain, and the
+// pixel is enclosed by terrain of `img` within `reach` pixels on both sides horizontally or
+// vertically, and its clear region of `img` (8-connected) touches no pixel the reference shows as
+// clear too (a hole inside the terrain, not a silhouette difference: a coarser silhouette's notch
+// opens onto the sky, however narrow; so does a crack that reaches the silhouette, which is missed).
+// Returns the count; mask is 0/1 per pixel.
+long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask = nullptr, int reach = 3);
 
 }  // namespace lb

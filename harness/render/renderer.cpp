@@ -55,7 +55,7 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   u.lodView = l.view;
   u.lodProj = l.proj;
   u.lodEye = glm::vec4(l.eye, 1.0f);
-  frustumPlanes(l.proj * l.view, u.frustum);
+  frustumPlanes(cullCamera_ == CullCamera::View ? u.viewProj : l.proj * l.view, u.frustum);
   u.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width), 1.0f / float(settings_.height));
   u.terrain = glm::vec4(terrain_.extent, float(settings_.grid), float(terrain_.width), float(terrain_.height));
   u.light = glm::vec4(glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f)), 0.0f);

@@ -86,6 +86,12 @@ class Renderer {
                                    FrameResult* result = nullptr);
   // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
   std::vector<float> capturedLevels();
+  // Which camera's frustum the control shaders cull with (FrameUniforms::frustum). Lod (default)
+  // follows the design; View keeps culling live while the LOD camera is frozen, so a popping pass
+  // (metrics/popping.h) sees only level changes, not holes where the old frustum culled.
+  enum class CullCamera { Lod, View };
+  void setCullCamera(CullCamera c) { cullCamera_ = c; }
+  CullCamera cullCamera() const { return cullCamera_; }
   // Measurement passes, separate from timing frames (each waits for frames in flight).
   TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr);
   std::vector<float> renderErrorMap(const CameraPose& view, const CameraPose& lod);
@@ -140,6 +146,7 @@ class Renderer {
   std::vector<FrameResult> completed_;
   uint32_t patchCount_ = 0, controlPoints_ = 4, patchesPerDraw_ = 1;
   double lastSubmitMs_ = -1;
+  CullCamera cullCamera_ = CullCamera::Lod;
 };
 
 }  // namespace lb

@@ -80,6 +80,12 @@ class Scheme {
   virtual double targetAreaPx(const ParamValues& values) const;
   // Per-frame CPU work: packs parameters into the uniform block (override for more).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
+  // Analytic crack count (metrics/cracks.h) for a scheme with its own patchGeometry: shared edges
+  // between drawn patches whose captured levels (LB_CAPTURE_STRIDE floats per patch) leave the two
+  // sides with different vertices. -1 = the renderer's uniform grid rule applies.
+  virtual long crackEdges(const Heightfield&, const ParamValues&, const std::vector<float>& /*levels*/) const {
+    return -1;
+  }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.

@@ -1,0 +1,22 @@
+#include "metrics/popping.h"
+
+#include "metrics/image_metrics.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current) {
+  struct RestoreCulling {  // also when a render throws
+    Renderer& r;
+    Renderer::CullCamera saved;
+    ~RestoreCulling() { r.setCullCamera(saved); }
+  } restore{renderer, renderer.cullCamera()};
+  renderer.setCullCamera(Renderer::CullCamera::View);
+  const int w = renderer.settings().width, h = renderer.settings().height;
+  RgbaImage frozen{w, h, renderer.renderImage(current, previous, RenderMode::Shaded)};
+  RgbaImage live{w, h, renderer.renderImage(current, current, RenderMode::Shaded)};
+  ImageError e = compareImages(frozen, live);
+  return {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
+}
+
+}  // namespace lb

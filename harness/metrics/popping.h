@@ -1,0 +1,25 @@
+#pragma once
+// Popping (design section 6): the visual change between two frames caused only by the LOD update.
+// The current pose is rendered twice, once with the LOD camera frozen at the previous pose (the
+// NVIDIA sample's "Eye only" mode: the centre of projection moves, the LOD does not) and once with
+// live LOD; camera motion is the same in both, so every difference comes from the levels changing.
+#include "camera/camera_path.h"
+
+namespace lb {
+
+class Renderer;
+
+struct PopResult {
+  double mean = 0;   // mean over pixels of the mean absolute RGB difference, 0..255
+  double p99 = 0;    // 99th percentile of the per-pixel largest channel difference, 0..255
+  long changed = 0;  // pixels with any channel difference
+};
+
+// Renders `current` shaded with LOD camera `previous`, then with LOD camera `current`, both culling
+// with the current (projection) camera's frustum so that the old frustum's culling leaves no holes
+// (Renderer::CullCamera::View, restored afterwards), and compares them with compareImages. Uses the
+// renderer's scheme; waits for frames in flight. previous == current gives exactly zero (the
+// renderer is deterministic). Back-face tests that use the LOD eye (phong) still use `previous`.
+PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current);
+
+}  // namespace lb
