@@ -3,8 +3,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/oracle.h"
+#include "metrics/popping.h"
 #include "metrics/stats.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
@@ -107,10 +109,18 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("img_mad", ie.meanAbsDiff);
     set("img_frac_over", ie.fractionOver);
   }
-  if (spec.on("cracks")) set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
+  if (spec.on("cracks")) {
+    set("cracks_analytic", double(analyticCracks(scheme, params, terrain, rs.grid, levels)));
+    set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
+  }
+  if (spec.on("popping")) {
+    // Frame 0 has no previous camera: nothing can pop yet.
+    PopResult pop = frame > 0 ? measurePopping(r, previous, current) : PopResult{0, 0, 0};
+    set("pop_mean", pop.mean);
+    set("pop_p99", pop.p99);
+    set("pop_changed", double(pop.changed));
+  }
   set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
-  (void)params;
-  (void)previous;
   return m;
 }
 
@@ -125,19 +135,6 @@ RgbaImage errorImage(const std::vector<float>& error, int width, int height) {
     // sqrt scale so sub-pixel errors stay visible: 0 px black, 8 px and more white.
     auto v = uint8_t(std::lround(255.0 * std::min(1.0, std::sqrt(double(error[i]) / 8.0))));
     p[0] = p[1] = p[2] = v;
-  }
-  return img;
-}
-
-RgbaImage crackImage(const RgbaImage& frame, const std::vector<uint8_t>& mask) {
-  RgbaImage img = frame;
-  for (size_t i = 0; i < mask.size(); ++i) {
-    uint8_t* p = &img.px[i * 4];
-    if (mask[i]) {
-      p[0] = 255, p[1] = 0, p[2] = 0;
-    } else {
-      p[0] = uint8_t(p[0] / 3), p[1] = uint8_t(p[1] / 3), p[2] = uint8_t(p[2] / 3);
-    }
   }
   return img;
 }

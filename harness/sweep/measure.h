@@ -54,9 +54,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme
 
 // Column names of the measurement part of frames.csv, in order.
 std::vector<std::string> metricColumns();
-// RGBA visualisations: error map (0 px black .. >= 8 px white, clear colour where no terrain)
-// and crack mask (red crack pixels over a dimmed frame).
+// Error map visualisation: 0 px black .. >= 8 px white (sqrt scale), clear colour where no terrain.
 RgbaImage errorImage(const std::vector<float>& error, int width, int height);
-RgbaImage crackImage(const RgbaImage& frame, const std::vector<uint8_t>& mask);
 
 }  // namespace lb

@@ -12,6 +12,7 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
+#include "metrics/cracks.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
@@ -120,7 +121,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
         if (modeName == "error" && !m.errorMap.empty())
           writePng(imageDir + "/" + name, c.width, c.height, errorImage(m.errorMap, c.width, c.height).px);
         else if (modeName == "cracks" && !m.crackMask.empty())
-          writePng(imageDir + "/" + name, c.width, c.height, crackImage(m.shaded, m.crackMask).px);
+          writePng(imageDir + "/" + name, c.width, c.height, crackMaskImage(m.shaded, m.crackMask).px);
         else
           continue;
       } else {
