@@ -119,3 +119,51 @@ TEST(Results, RerunResumesFinishedCases) {
   EXPECT_TRUE(fs::exists(dir / "cases" / "uniform-level3_proc65s3_flyover_64x48.json"));
   EXPECT_EQ(readJson(dir / "summary.json")["cases"].size(), 2u);
 }
+
+// Measurement passes run after the timing frames: the timing frames' counters are identical
+// with measurements on and off, and each measured frame's histogram adds up to its triangles.
+TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
+  Config off = tinyConfig();
+  Config on = tinyConfig();
+  on.measure.every = 2;
+  on.images.modes = {"error", "cracks"};
+  fs::path dOff = freshDir("lodbench_measure_off"), dOn = freshDir("lodbench_measure_on");
+  EXPECT_EQ(runSweep(off, {dOff.string(), false, false}).ok, 2);
+  RunTotals t = runSweep(on, {dOn.string(), false, false});
+  EXPECT_EQ(t.ok, 2);
+  EXPECT_EQ(t.validationErrors, 0);
+  for (const char* id : {"uniform-level3_proc65s3_flyover_64x48", "sphere_proc65s3_flyover_64x48"}) {
+    SCOPED_TRACE(id);
+    json a = readJson(dOff / "cases" / (std::string(id) + ".json"));
+    json b = readJson(dOn / "cases" / (std::string(id) + ".json"));
+    ASSERT_EQ(a["frames"].size(), b["frames"].size());
+    for (size_t i = 0; i < a["frames"].size(); ++i)
+      for (const char* k : {"patches", "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"})
+        EXPECT_EQ(a["frames"][i][k], b["frames"][i][k]) << "frame " << i << " " << k;
+    int measured = 0;
+    for (auto& f : b["frames"]) {
+      if (!f.contains("hist")) continue;
+      ++measured;
+      uint64_t total = f["hist_offscreen"].get<uint64_t>() + f["hist_backfacing"].get<uint64_t>();
+      for (auto& bin : f["hist"]) total += bin.get<uint64_t>();
+      EXPECT_EQ(total, f["clip_invocations"].get<uint64_t>()) << "frame " << f["frame"];
+      for (const char* k : {"err_mean_px", "err_p95_px", "img_psnr_db", "img_ssim", "cracks_analytic", "cracks_pixels",
+                            "pop_mean", "surplus", "tri_area_mean"})
+        EXPECT_TRUE(f.contains(k)) << k;
+      EXPECT_EQ(f["cracks_analytic"], 0.0);
+      EXPECT_EQ(f["cracks_pixels"], 0.0);
+    }
+    EXPECT_EQ(measured, 2);  // frames 0 and 2 of 4
+    EXPECT_EQ(b["summary"]["measured_frames"], 2);
+    EXPECT_TRUE(b["summary"].contains("err_mean_px"));
+    EXPECT_EQ(b["summary"]["hist_total"].size(), 15u);
+    EXPECT_EQ(b["images"].size(), 2u);
+    for (auto& img : b["images"]) EXPECT_TRUE(fs::exists(dOn / img.get<std::string>())) << img;
+  }
+  std::ifstream csv(dOn / "frames.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",hist_14,"), std::string::npos);
+  EXPECT_NE(header.find(",err_p95_px,"), std::string::npos);
+  EXPECT_NE(header.find(",surplus,"), std::string::npos);
+}

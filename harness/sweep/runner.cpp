@@ -113,7 +113,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
         if (!kept.count(frame)) {
           MeasureSpec one = ms;
           one.every = 1;
-          one.passes = {modeName == "error" ? "error" : "cracks"};
+          one.passes = {"error", "cracks"};
           kept[frame] = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, one, refs,
                                      frame, pose(std::max(0, frame - 1)), pose(frame));
         }
