@@ -7,6 +7,8 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
+#include "metrics/cracks.h"
+#include "sweep/measure.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "schemes/registry.h"
@@ -42,7 +44,7 @@ struct RenderArgs {
   int frame = 0, width = 640, height = 360, grid = 32, size = 513;
   unsigned seed = 1;
   double fps = 30, extent = 1000, heightScale = -1;
-  bool wireframe = false, heatmap = false, validation = false;
+  bool wireframe = false, heatmap = false, error = false, cracks = false, validation = false;
 };
 
 static int renderCmd(const RenderArgs& a) {
@@ -81,6 +83,17 @@ static int renderCmd(const RenderArgs& a) {
     RenderMode mode = a.wireframe ? RenderMode::Wireframe : a.heatmap ? RenderMode::Heatmap : RenderMode::Shaded;
     FrameResult fr;
     auto px = renderer.renderImage(pose, pose, mode, &fr);
+    if (a.error || a.cracks) {
+      // Error map and crack mask come from the measurement passes of a run.
+      MeasureSpec spec;
+      spec.every = 1;
+      spec.passes = {"error", "cracks"};
+      ReferenceCache refs;
+      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame,
+                                    pose, pose);
+      px = a.error ? errorImage(m.errorMap, a.width, a.height).px : crackMaskImage(m.shaded, m.crackMask).px;
+      for (auto& [k, v] : m.values) std::printf("%s = %g\n", k.c_str(), v);
+    }
     writePng(a.out, a.width, a.height, px);
     std::printf("%s: %s frame %d on %s: %llu patches, %llu triangles, %.3f ms GPU\n", a.out.c_str(), a.scheme.c_str(),
                 a.frame, ctx.props.deviceName, (unsigned long long)fr.stats.tcsPatches,
@@ -130,6 +143,8 @@ int main(int argc, char** argv) {
   auto* modes = render->add_option_group("mode", "Image mode (default: shaded)");
   modes->add_flag("--wireframe", ra.wireframe, "Wireframe, coloured by tessellation level");
   modes->add_flag("--heatmap", ra.heatmap, "Tessellation level heat map (log2: blue 1, green 8, red 64)");
+  modes->add_flag("--error", ra.error, "Screen-space geometric error map (black 0 px .. white >= 8 px, sqrt scale)");
+  modes->add_flag("--cracks", ra.cracks, "Crack mask against the reference scheme (red over a dimmed frame)");
   modes->require_option(0, 1);
 
   try {
