@@ -1,4 +1,5 @@
 // lodbench: command-line entry point. Subcommands: list, devices, run, render.
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "error.h"
 #include "metrics/cracks.h"
 #include "sweep/measure.h"
+#include "sweep/merge.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "schemes/registry.h"
@@ -120,6 +122,18 @@ int main(int argc, char** argv) {
   run->add_option("--device", runDevice, "Vulkan device: name substring or index (overrides the config)");
   run->add_flag("--validation", ro.validation, "Enable the Vulkan validation layer");
   run->add_flag("-q,--quiet", quiet, "No progress output");
+  std::string shard;
+  bool dryRun = false;
+  run->add_option("--shard", shard, "Run the deterministic subset i/n of the cases (case index % n == i)");
+  run->add_flag("--dry-run", dryRun, "List the cases (of this shard) and exit");
+
+  auto* merge = app.add_subcommand("merge", "Join shard run directories into one run");
+  std::string mergeOut;
+  std::vector<std::string> mergeInputs;
+  bool mergeForce = false;
+  merge->add_option("--out", mergeOut, "Merged run directory")->required();
+  merge->add_option("runs", mergeInputs, "Shard run directories")->required();
+  merge->add_flag("--force", mergeForce, "Merge runs of different configs, devices or drivers");
 
   auto* render = app.add_subcommand("render", "Render one frame of a camera path to PNG");
   RenderArgs ra;
@@ -156,11 +170,34 @@ int main(int argc, char** argv) {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
+    if (*merge) {
+      MergeTotals t = mergeRuns(mergeOut, mergeInputs, mergeForce);
+      std::printf("%s\n", mergeOut.c_str());
+      std::fprintf(stderr, "lodbench: merged %d cases (%d duplicates) from %zu runs -> %s\n", t.cases, t.duplicates,
+                   mergeInputs.size(), mergeOut.c_str());
+      return 0;
+    }
     if (*run) {
       Config config = loadConfig(configFile);
       if (!runDevice.empty()) config.device = runDevice;
+      if (!shard.empty()) parseShard(shard, ro.shardIndex, ro.shardCount);
+      if (dryRun) {
+        auto cases = shardCases(config, ro.shardIndex, ro.shardCount);
+        for (auto& c : cases) std::printf("%s\n", c.id.c_str());
+        std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), ro.shardIndex, ro.shardCount,
+                     expandCases(config).size());
+        return 0;
+      }
       ro.progress = !quiet;
+      // Ctrl-C / kill: finish the current frame, keep every finished case, exit 130.
+      std::signal(SIGINT, [](int) { requestStop(); });
+      std::signal(SIGTERM, [](int) { requestStop(); });
       RunTotals t = runSweep(config, ro);
+      if (t.interrupted) {
+        std::fprintf(stderr, "lodbench: interrupted; %d finished cases kept in %s (run again to resume)\n", t.ok,
+                     t.dir.c_str());
+        return 130;
+      }
       std::printf("%s\n", t.dir.c_str());
       std::fprintf(stderr, "lodbench: %d ok (%d resumed), %d failed, %d skipped -> %s\n", t.ok, t.resumed, t.failed,
                    t.skipped, t.dir.c_str());

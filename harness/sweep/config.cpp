@@ -161,7 +161,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   }
   Reader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
-                     "repetitions", "terrain", "terrains", "path", "paths", "schemes", "images", "measure",
+                     "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure",
                      "description"});
   Config c;
   c.file = file;
@@ -191,6 +191,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   if (j.contains("fps")) c.fps = r.number(j["fps"], "/fps", 1, 1000);
   if (j.contains("warmup_frames")) c.warmupFrames = r.integer(j["warmup_frames"], "/warmup_frames", 0, 100000);
   if (j.contains("max_frames")) c.maxFrames = r.integer(j["max_frames"], "/max_frames", 0, 10000000);
+  if (j.contains("case_timeout_s")) c.caseTimeoutS = r.number(j["case_timeout_s"], "/case_timeout_s", 0, 1e7);
   if (j.contains("repetitions")) c.repetitions = r.integer(j["repetitions"], "/repetitions", 1, 1000);
   if (j.contains("terrain")) {
     auto t = parseTerrain(r, j["terrain"], "/terrain", baseDir);

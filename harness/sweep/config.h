@@ -32,6 +32,7 @@ struct Config {
   int warmupFrames = 5;
   int maxFrames = 0;       // 0 = every frame of the path
   int repetitions = 1;
+  double caseTimeoutS = 0; // a case running longer fails with "timeout" (0 = no limit)
   std::vector<TerrainSpec> terrains;
   std::vector<std::string> paths;  // resolved file paths
   std::vector<SchemeEntry> schemes;

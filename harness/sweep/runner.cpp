@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,8 @@ namespace lb {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+static std::atomic<bool> gStop{false};
 
 RenderMode parseRenderMode(const std::string& name) {
   if (name == "shaded") return RenderMode::Shaded;
@@ -70,6 +73,9 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   int total = frames * config.repetitions;
   for (int rep = 0; rep < config.repetitions; ++rep)
     for (int f = 0; f < frames; ++f) {
+      if (gStop) throw Interrupted();
+      if (config.caseTimeoutS > 0 && secondsSince(t0) > config.caseTimeoutS)
+        throw std::runtime_error("timeout: the case ran longer than " + std::to_string(config.caseTimeoutS) + " s");
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p);
       for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
@@ -91,6 +97,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     int count = (frames + ms.every - 1) / ms.every, done = 0;
     auto tm = std::chrono::steady_clock::now();
     for (int f = 0; f < frames; f += ms.every) {
+      if (gStop) throw Interrupted();
       FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, ms, refs, f,
                                     pose(std::max(0, f - 1)), pose(f));
       if (wantsImage(f)) kept[f] = m;
@@ -146,7 +153,7 @@ static std::string defaultRunDir(const Config& config) {
 }
 
 // frames.csv and summary.json are rebuilt from the case files, so resumed runs stay complete.
-static void writeAggregates(const std::string& dir, const json& context) {
+void writeAggregates(const std::string& dir, const json& context) {
   std::string csv = framesCsvHeader();
   json cases = json::array();
   std::vector<fs::path> files;
@@ -167,25 +174,72 @@ static void writeAggregates(const std::string& dir, const json& context) {
   writeFileAtomic(dir + "/summary.json", summary.dump(2));
 }
 
+void requestStop() { gStop = true; }
+
+std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount) {
+  std::vector<Case> all = expandCases(config), out;
+  for (size_t i = 0; i < all.size(); ++i)
+    if (int(i % size_t(shardCount)) == shardIndex) out.push_back(all[i]);
+  return out;
+}
+
+void parseShard(const std::string& text, int& index, int& count) {
+  auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    index = std::stoi(text.substr(0, slash));
+    count = std::stoi(text.substr(slash + 1));
+  } catch (const std::exception&) {
+    throw InputError("--shard '" + text + "': expected i/n, e.g. 0/4");
+  }
+  if (count < 1 || index < 0 || index >= count)
+    throw InputError("--shard '" + text + "': need 0 <= i < n");
+}
+
+// Temp files of an interrupted writer are never valid results.
+static void removeStaleTemps(const std::string& dir) {
+  for (auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename().string().find(".tmp") != std::string::npos) fs::remove(e.path());
+}
+
 RunTotals runSweep(const Config& config, const RunOptions& options) {
+  gStop = false;
   RunTotals totals;
   totals.dir = options.outDir.empty() ? defaultRunDir(config) : options.outDir;
+  std::string runJson = totals.dir + "/run.json";
+  json previous;
+  if (std::ifstream in{runJson}) {
+    previous = json::parse(in, nullptr, false);
+    if (previous.is_discarded() || !previous.contains("context"))
+      throw InputError(runJson + ": not a lodbench run (unreadable run.json)");
+    if (previous["context"]["config"] != config.raw)
+      throw InputError(runJson + ": this run directory holds a different config ('" +
+                       previous["context"].value("config_file", "?") + "'); choose another --out");
+  }
   fs::create_directories(totals.dir + "/cases");
   fs::create_directories(totals.dir + "/images");
+  removeStaleTemps(totals.dir);
   Context ctx;
   createContext(ctx, {config.device, options.validation});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
   json context = runContext(ctx, config);
-  std::string runJson = totals.dir + "/run.json";
-  json run = {{"schema_version", kSchemaVersion}, {"context", context}, {"start_time", context["time"]}};
+  json run = {{"schema_version", kSchemaVersion}, {"context", context}, {"start_time", context["time"]},
+              {"shard", {{"index", options.shardIndex}, {"count", options.shardCount}}}};
+  if (!previous.is_null()) {
+    run["start_time"] = previous.value("start_time", context["time"].get<std::string>());
+    run["resumed_at"] = previous.value("resumed_at", json::array());
+    run["resumed_at"].push_back(context["time"]);
+  }
   writeFileAtomic(runJson, run.dump(2));
 
-  auto cases = expandCases(config);
+  auto cases = shardCases(config, options.shardIndex, options.shardCount);
   auto t0 = std::chrono::steady_clock::now();
+  double runSeconds = 0;
+  int ran = 0;
   ReferenceCache refs;
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
-  for (size_t i = 0; i < cases.size(); ++i) {
+  for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
     const Case& c = cases[i];
     std::string caseFile = totals.dir + "/cases/" + c.id + ".json";
     if (std::ifstream in{caseFile}) {
@@ -197,16 +251,30 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       }
     }
     if (options.progress) {
-      double el = secondsSince(t0);
-      std::fprintf(stderr, "[%zu/%zu] %s  (%.0fs elapsed)\n", i + 1, cases.size(), c.id.c_str(), el);
+      // Remaining time from the mean duration of the cases run so far in this invocation.
+      double left = ran ? runSeconds / ran * double(cases.size() - i) : 0;
+      std::fprintf(stderr, "[%zu/%zu] %s  (%.0fs elapsed%s)\n", i + 1, cases.size(), c.id.c_str(), secondsSince(t0),
+                   ran ? (", ~" + std::to_string(int(left)) + "s left").c_str() : "");
     }
+    auto tc = std::chrono::steady_clock::now();
     CaseResult r;
     try {
       r = runCase(ctx, c, config, totals.dir + "/images", options.progress, refs);
+    } catch (const Interrupted&) {
+      totals.interrupted = true;
+      break;
     } catch (const std::exception& e) {
       r.status = "failed";
       r.reason = e.what();
+      if (r.reason.find("VK_ERROR_DEVICE_LOST") != std::string::npos) {
+        // A lost device is unusable: start a new one for the remaining cases.
+        destroyContext(ctx);
+        createContext(ctx, {config.device, options.validation});
+        refs = ReferenceCache{};
+      }
     }
+    runSeconds += secondsSince(tc);
+    ++ran;
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
@@ -220,6 +288,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     writeAggregates(totals.dir, context);
   }
   run["end_time"] = isoTimeUtc();
+  run["interrupted"] = totals.interrupted;
   run["totals"] = {{"ok", totals.ok}, {"failed", totals.failed}, {"skipped", totals.skipped}, {"cases", cases.size()}};
   run["validation_errors"] = ctx.validationErrors.load();
   writeFileAtomic(runJson, run.dump(2));

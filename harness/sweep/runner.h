@@ -1,7 +1,9 @@
 #pragma once
 // Replays every case of a config and writes results as it goes; a failing case is recorded as
 // failed with its reason and the sweep goes on. Finished cases in an existing run dir are kept.
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sweep/config.h"
 #include "sweep/results.h"
@@ -14,15 +16,30 @@ struct RunOptions {
   std::string outDir;      // run directory; "" = results/<name>/<utc-time>
   bool progress = true;    // progress line on stderr
   bool validation = false;
+  int shardIndex = 0, shardCount = 1;  // run cases whose index % shardCount == shardIndex
 };
+
+// Thrown when a stop was requested (SIGINT/SIGTERM): the running case is dropped, finished ones stay.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+// Async-signal-safe: sets a flag the replay loop checks between frames.
+void requestStop();
 
 struct RunTotals {
   std::string dir;
   int ok = 0, failed = 0, skipped = 0, resumed = 0;
   int validationErrors = 0;  // when the validation layer was on
+  bool interrupted = false;
 };
 
 RunTotals runSweep(const Config& config, const RunOptions& options);
+// Rebuilds frames.csv and summary.json of a run directory from its case files.
+void writeAggregates(const std::string& dir, const nlohmann::json& context);
+// The cases this shard runs, in order (deterministic for a config).
+std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount);
+// Parses "i/n" (0 <= i < n); throws InputError naming the flag.
+void parseShard(const std::string& text, int& index, int& count);
 // One case on an existing device context (used by tests and the sweep).
 CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
                    ReferenceCache& refs);

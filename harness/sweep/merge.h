@@ -1,0 +1,15 @@
+#pragma once
+// Joins the run directories of several shards (or machines) into one run.
+#include <string>
+#include <vector>
+
+namespace lb {
+
+struct MergeTotals {
+  int cases = 0, duplicates = 0;
+};
+
+// Refuses (InputError) runs of different configs, devices or drivers unless `force`.
+MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>& inputs, bool force);
+
+}  // namespace lb
