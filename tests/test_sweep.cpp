@@ -166,3 +166,28 @@ TEST(Sweep, KilledSweepLosesNoFinishedCaseAndResumes) {
   for (auto& e : fs::recursive_directory_iterator(run))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
+
+TEST(Sweep, MatchedComparisonHitsTheTriangleBudget) {
+  Config c = parseConfig(R"({
+    "name": "match", "resolution": [96, 64], "grid": 8, "fps": 10, "warmup_frames": 0, "max_frames": 6,
+    "terrain": {"type": "procedural", "size": 65, "seed": 5},
+    "paths": ["paths/flyover.csv"],
+    "schemes": ["uniform", "sphere", "reference"],
+    "match": {"metric": "triangles", "value": 3000, "frames": 3, "iterations": 12}
+  })",
+                         "match.json", kConfigs);
+  fs::path d = fresh("sweep_match");
+  EXPECT_EQ(runSweep(c, {d.string(), false, false}).ok, 3);
+  json sphere = readJson(d / "cases" / "sphere_proc65s5_flyover_96x64_match-triangles3000.json");
+  EXPECT_EQ(sphere["matched"]["param"], "tri_size");
+  EXPECT_TRUE(sphere["matched"]["reachable"].get<bool>());
+  EXPECT_NEAR(sphere["matched"]["achieved"].get<double>(), 3000.0, 3000.0 * 0.1);
+  EXPECT_EQ(sphere["params"]["tri_size"], sphere["matched"]["value"]);
+  // uniform: 64 patches x 2 L^2 triangles; L = 5 gives 3200, the closest to 3000 (L = 4: 2048).
+  json uniform = readJson(d / "cases" / "uniform_proc65s5_flyover_96x64_match-triangles3000.json");
+  EXPECT_EQ(uniform["matched"]["value"], 5.0);
+  EXPECT_EQ(uniform["summary"]["triangles"]["median"], 3200.0);
+  // reference has no parameter to search: it runs as configured.
+  json reference = readJson(d / "cases" / "reference_proc65s5_flyover_96x64_match-triangles3000.json");
+  EXPECT_EQ(reference["matched"]["param"], "");
+}

@@ -161,7 +161,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   }
   Reader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
-                     "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure",
+                     "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
                      "description"});
   Config c;
   c.file = file;
@@ -258,6 +258,17 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     if (me.contains("diff_threshold"))
       c.measure.diffThreshold = r.integer(me["diff_threshold"], "/measure/diff_threshold", 0, 255);
   }
+  if (j.contains("match")) {
+    const json& m = j["match"];
+    r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations"});
+    if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
+    c.match.metric = r.string(m["metric"], "/match/metric");
+    if (c.match.metric != "triangles" && c.match.metric != "err_mean_px")
+      r.fail("/match/metric", "'" + c.match.metric + "' is not one of triangles, err_mean_px");
+    c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
+    if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
+    if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);
+  }
   return c;
 }
 
@@ -297,6 +308,7 @@ std::vector<Case> expandCases(const Config& config) {
             c.id = s.name;
             for (auto& [k, v] : params) c.id += "-" + k + formatNumber(v);
             c.id += "_" + c.terrainLabel + "_" + stem + "_" + std::to_string(res.first) + "x" + std::to_string(res.second);
+            if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
             cases.push_back(c);
           }
   return cases;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/scheme.h"
+#include "sweep/matched.h"
 #include "sweep/measure.h"
 #include "terrain/heightfield.h"
 
@@ -38,6 +39,7 @@ struct Config {
   std::vector<SchemeEntry> schemes;
   ImageRequest images;
   MeasureSpec measure;     // measurement passes (off unless "measure" is given)
+  MatchSpec match;         // matched comparisons (off unless "match" is given)
   nlohmann::json raw;      // the config as written, recorded in results
 };
 

@@ -186,6 +186,7 @@ json caseJson(const Case& c, const CaseResult& r) {
   }
   json params = json::object();
   for (auto& [k, v] : c.params) params[k] = v;
+  if (r.matched.is_object() && !r.matched.value("param", "").empty()) params[r.matched["param"]] = r.matched["value"];
   return {{"schema_version", kSchemaVersion},
           {"case_id", c.id},
           {"scheme", c.scheme},
@@ -199,6 +200,7 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"reason", r.reason},
           {"seconds", r.seconds},
           {"target_area_px", r.targetAreaPx > 0 ? json(r.targetAreaPx) : json(nullptr)},
+          {"matched", r.matched},
           {"images", r.images},
           {"summary", caseSummary(r)},
           {"frames", frames}};

@@ -23,6 +23,7 @@ struct CaseResult {
   std::vector<FrameResult> frames;
   std::vector<FrameMetrics> metrics;  // measurement frames (images dropped after use)
   double targetAreaPx = 0;            // the scheme's target triangle area, 0 = none
+  nlohmann::json matched;             // matched-comparison search result (null when off)
   std::vector<std::string> images;  // relative to the run dir
   double seconds = 0;
 };

@@ -59,8 +59,16 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   Heightfield terrain = makeHeightfield(c.terrain);
   CameraPath path = loadCameraPath(c.path);
   RenderSettings settings{c.width, c.height, config.grid};
+  ParamValues params = c.params;
+  if (config.match.on()) {
+    MatchResult m = matchParameter(ctx, *scheme, params, terrain, path, config, c);
+    if (!m.param.empty()) params[m.param] = m.value;
+    result.matched = {{"metric", config.match.metric}, {"target", config.match.value}, {"param", m.param},
+                      {"value", m.value}, {"achieved", m.achieved}, {"evaluations", m.evaluations},
+                      {"reachable", m.reachable}};
+  }
   Renderer renderer(ctx, terrain, settings);
-  renderer.setScheme(*scheme, c.params);
+  renderer.setScheme(*scheme, params);
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };

@@ -1,0 +1,85 @@
+#include "sweep/matched.h"
+
+#include <cmath>
+
+#include "camera/camera_path.h"
+#include "render/renderer.h"
+#include "sweep/config.h"
+
+namespace lb {
+
+std::string matchParamName(const SchemeInfo& info) {
+  for (const char* name : {"tri_size", "level", "max_lod"})
+    for (auto& p : info.params)
+      if (p.name == name) return name;
+  return "";
+}
+
+MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
+                           const CameraPath& path, const Config& config, const Case& c) {
+  const MatchSpec& spec = config.match;
+  MatchResult out;
+  out.param = matchParamName(scheme.info());
+  if (out.param.empty()) return out;
+  const ParamSpec* ps = nullptr;
+  for (auto& p : scheme.info().params)
+    if (p.name == out.param) ps = &p;
+  int frames = frameCount(path, config.fps);
+  if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
+  Renderer r(ctx, terrain, {c.width, c.height, config.grid});
+
+  auto evaluate = [&](double v) {
+    ParamValues pv = base;
+    pv[out.param] = ps->integer ? std::round(v) : v;
+    r.setScheme(scheme, pv);
+    double sum = 0;
+    int n = std::max(1, std::min(spec.frames, frames));
+    for (int k = 0; k < n; ++k) {
+      int f = n == 1 ? 0 : k * (frames - 1) / (n - 1);
+      CameraPose p = samplePose(path, config.fps, f, terrain);
+      if (spec.metric == "triangles") {
+        r.submitFrame(f, p, p);
+        r.finish();
+        sum += double(r.takeCompleted().back().stats.clipInvocations);
+      } else {
+        auto err = r.renderErrorMap(p, p);
+        double s = 0;
+        int m = 0;
+        for (float e : err)
+          if (e >= 0) s += e, ++m;
+        sum += m ? s / m : 0;
+      }
+    }
+    ++out.evaluations;
+    return sum / n;
+  };
+  // Parameters spanning orders of magnitude (tri_size 0.5..64) are searched in log space.
+  bool logScale = ps->min > 0 && ps->max / ps->min > 16;
+  auto toX = [&](double v) { return logScale ? std::log(v) : v; };
+  auto fromX = [&](double x) { return logScale ? std::exp(x) : x; };
+  double lo = toX(ps->min), hi = toX(ps->max);
+  double flo = evaluate(fromX(lo)), fhi = evaluate(fromX(hi));
+  bool increasing = fhi >= flo;
+  double target = spec.value;
+  if ((increasing && (target < flo || target > fhi)) || (!increasing && (target > flo || target < fhi))) {
+    out.reachable = false;
+    bool takeLo = std::abs(target - flo) < std::abs(target - fhi);
+    out.value = fromX(takeLo ? lo : hi);
+    out.achieved = takeLo ? flo : fhi;
+  } else {
+    for (int i = 0; i < spec.iterations; ++i) {
+      double mid = 0.5 * (lo + hi);
+      if (ps->integer && std::round(fromX(hi)) - std::round(fromX(lo)) <= 1) break;
+      double fm = evaluate(fromX(mid));
+      if ((fm < target) == increasing) lo = mid, flo = fm;
+      else hi = mid, fhi = fm;
+    }
+    bool takeLo = std::abs(target - flo) <= std::abs(target - fhi);
+    out.value = fromX(takeLo ? lo : hi);
+    out.achieved = takeLo ? flo : fhi;
+  }
+  if (ps->integer) out.value = std::round(out.value);
+  return out;
+}
+
+}  // namespace lb

@@ -1,0 +1,38 @@
+#pragma once
+// Matched comparisons: before a case runs, search its scheme's main parameter so that the case
+// hits a triangle budget or a mean screen-space error on its path; schemes are then compared at
+// equal cost or equal quality.
+#include <string>
+
+#include "render/scheme.h"
+
+namespace lb {
+
+struct Context;
+struct Config;
+struct Case;
+struct Heightfield;
+struct CameraPath;
+
+struct MatchSpec {
+  std::string metric;  // "" (off) | "triangles" | "err_mean_px"
+  double value = 0;    // target: mean triangles per frame, or mean error in pixels
+  int frames = 8;      // evaluation frames spread evenly over the path
+  int iterations = 12; // bisection steps
+  bool on() const { return !metric.empty(); }
+};
+
+struct MatchResult {
+  std::string param;     // the parameter searched ("" when the scheme has none)
+  double value = 0;      // chosen value
+  double achieved = 0;   // the metric at that value
+  int evaluations = 0;
+  bool reachable = true; // false when the target lies outside the parameter's range
+};
+
+// The parameter a match searches: tri_size, else level, else max_lod; "" for none (reference).
+std::string matchParamName(const SchemeInfo& info);
+MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
+                           const CameraPath& path, const Config& config, const Case& c);
+
+}  // namespace lb
