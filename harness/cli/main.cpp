@@ -1,4 +1,4 @@
-// lodbench: command-line entry point. Subcommands: list, devices, run, render.
+// lodbench: command-line entry point. Subcommands: list, devices, run, render, report.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +9,7 @@
 #include "error.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
+#include "report/report.h"
 #include "schemes/registry.h"
 #include "sweep/config.h"
 #include "sweep/runner.h"
@@ -132,6 +133,15 @@ int main(int argc, char** argv) {
   modes->add_flag("--heatmap", ra.heatmap, "Tessellation level heat map (log2: blue 1, green 8, red 64)");
   modes->require_option(0, 1);
 
+  auto* report = app.add_subcommand("report", "Report a run: report.md, Vega-Lite charts and (with Node) report.html");
+  ReportOptions rep;
+  bool noHtml = false;
+  report->add_option("run-dir", rep.runDir, "Run directory, e.g. results/quick/<run-id>")->required();
+  report->add_option("--out", rep.outDir, "Report directory (default: <run-dir>/report)");
+  report->add_option("--frames", rep.frames, "Frames for the image strips, e.g. 0,240 (default: all with images)")
+      ->delimiter(',');
+  report->add_flag("--no-html", noHtml, "Write Markdown and chart specs only (do not run report/render.mjs)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -141,6 +151,10 @@ int main(int argc, char** argv) {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
+    if (*report) {
+      rep.html = !noHtml;
+      return reportCommand(rep);
+    }
     if (*run) {
       Config config = loadConfig(configFile);
       if (!runDevice.empty()) config.device = runDevice;

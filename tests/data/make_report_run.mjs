@@ -90,8 +90,9 @@ function measure(c, f, lowalt) {
     err_mean_px: round(err), err_p95_px: round(p95), err_max_px: round(p95 * jitter(2.2, 0.1)),
     img_psnr_db: round(20 * Math.log10(255 / (mad * 1.8 + 0.5)), 3), img_ssim: round(1 - 0.02 * err * 4),
     img_mad: round(mad), img_frac_over: round(Math.min(1, 0.015 * err * 4)),
-    cracks_analytic: phong ? Math.floor(rand() * (lowalt ? 6 : 2)) : 0,
-    cracks_pixels: phong ? Math.floor(rand() * (lowalt ? 14 : 3)) : 0,
+    // phong's lowalt cracks grow along the path, so the worst frame (6) is one with images.
+    cracks_analytic: !phong ? 0 : lowalt ? 1 + Math.floor(f.frame / 2) : Math.floor(rand() * 2),
+    cracks_pixels: !phong ? 0 : lowalt ? 2 + Math.round(f.frame * 1.5) : Math.floor(rand() * 3),
     pop_mean: round(jitter(kPop[c.scheme], 0.4)), pop_p99: round(jitter(kPop[c.scheme] * 20, 0.3), 2),
     pop_changed: Math.round(jitter(kPop[c.scheme] * 300, 0.4)),
     surplus: round(jitter(c.scheme === 'uniform' ? level * level / 60 : 1 + 1 / (c.params.tri_size || 1), 0.05), 3),
