@@ -79,6 +79,8 @@ void stripSection(Writer& w, const std::vector<Strip>& strips, const std::string
   w.para("Chosen frames and each case's worst frames (cracks, popping, error), in the modes the run rendered.");
   for (auto& s : strips) {
     std::string caption = s.c->label + ", " + s.c->scenario + ", frame " + std::to_string(s.frame);
+    std::string worst = worstOf(*s.c, s.frame);
+    if (!worst.empty()) caption += " (worst frame: " + worst + ")";
     std::string md = "**" + caption + "**\n\n", html;
     html += "<figure class=\"strip\" id=\"" + imageAnchor(s.c->id, s.frame) + "\"><figcaption>" + htmlEscape(caption) +
             "</figcaption><div class=\"shots\">";

@@ -115,6 +115,17 @@ std::vector<int> worstFrames(const ReportCase& c) {
   return frames;
 }
 
+std::string worstOf(const ReportCase& c, int frame) {
+  std::string s;
+  auto f = c.summary.find("worst_frames");
+  if (f == c.summary.end() || !f->is_object()) return s;
+  for (const Worst& w : kWorst) {
+    auto v = summaryStat(c.summary, w.key, "max");
+    if (v && *v > 0 && (*f)[w.key] == frame) s += (s.empty() ? "" : ", ") + std::string(w.label);
+  }
+  return s;
+}
+
 Table contextTable(const RunData& run) {
   const json& x = run.context;
   const json totals = run.run.value("totals", json::object());

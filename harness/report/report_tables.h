@@ -21,5 +21,7 @@ Table problemTable(const RunData& run);
 std::string imageAnchor(const std::string& caseId, int frame);
 // Frames the stability table links to (worst cracks, popping, error), for the image strips.
 std::vector<int> worstFrames(const ReportCase& c);
+// What frame is the worst of for this case ("cracks, error"), or "".
+std::string worstOf(const ReportCase& c, int frame);
 
 }  // namespace lb
