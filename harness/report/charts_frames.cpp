@@ -140,7 +140,7 @@ std::vector<Chart> timelineCharts(const RunData& run) {
     if (c.status != "ok") continue;
     for (auto& f : c.frames) {
       json row = {{"case_id", c.id}, {"scheme", c.scheme}, {"params", c.paramsLabel}, {"label", c.label},
-                  {"scenario", c.scenario}, {"frame", f.value("frame", 0)}};
+                  {"scenario", c.scenario}, {"frame", frameValue(f, "frame").value_or(0)}};
       for (const Series& s : kSeries) {
         auto v = frameValue(f, s.field);
         row[s.field] = v ? json(*v) : json(nullptr);

@@ -114,7 +114,7 @@ std::vector<Chart> speedCharts(const RunData& run) {
       for (auto& c : run.cases) {
         if (c.status != "ok" || !summaryStat(c.summary, cost.key, "median")) continue;
         if (!summaryStat(c.summary, err.field, "mean")) {
-          if (err.field == kErrors[0].field) unmeasured.push_back(c.label + " (" + c.scenario + ")");
+          if (&err == &kErrors[0]) unmeasured.push_back(c.label + " (" + c.scenario + ")");
           continue;
         }
         groups[{c.scheme, c.scenario}].push_back(&c);

@@ -51,7 +51,8 @@ static void fillCase(ReportCase& c, const json& j) {
   if (j.contains("summary") && j["summary"].is_object()) c.summary = j["summary"];
   if (j.contains("frames") && j["frames"].is_array()) c.frames = j["frames"];
   if (auto t = j.find("terrain"); t != j.end()) c.terrain = t->is_object() ? str(*t, "label") : t->is_string() ? t->get<std::string>() : "";
-  if (auto r = j.find("resolution"); r != j.end() && r->is_array() && r->size() == 2) {
+  if (auto r = j.find("resolution");
+      r != j.end() && r->is_array() && r->size() == 2 && (*r)[0].is_number_integer() && (*r)[1].is_number_integer()) {
     c.width = (*r)[0].get<int>();
     c.height = (*r)[1].get<int>();
   }
@@ -114,6 +115,7 @@ static size_t configIndex(const json& list, const std::string& name, bool byStem
 // Cases in the config's order: by scheme, path, then parameter values.
 static void sortCases(RunData& run) {
   json config = run.context.value("config", json::object());
+  if (!config.is_object()) config = json::object();
   json schemes = config.value("schemes", json::array()), paths = config.value("paths", json::array());
   auto key = [&](const ReportCase& c) {
     return std::make_tuple(configIndex(schemes, c.scheme, false), configIndex(paths, fs::path(c.path).stem().string(), true),
@@ -161,16 +163,19 @@ RunData loadRun(const std::string& dir) {
   if (!hasSummary && !hasCases)
     throw InputError(dir + ": not a lodbench run directory (no summary.json and no cases/; run `lodbench run` first)");
 
-  if (auto r = readJson(root / "run.json", run.notes)) run.run = *r;
+  if (auto r = readJson(root / "run.json", run.notes); r && r->is_object()) run.run = *r;
   else run.notes.push_back("run.json missing: the run's context comes from summary.json");
   std::optional<json> summary = hasSummary ? readJson(root / "summary.json", run.notes) : std::nullopt;
+  if (summary && !summary->is_object()) summary.reset();
   if (!summary) run.notes.push_back("summary.json missing (interrupted run?): cases are read from cases/");
   run.context = run.run.value("context", summary ? summary->value("context", json::object()) : json::object());
-  run.name = run.context.contains("config") ? run.context["config"].value("name", "") : "";
+  if (!run.context.is_object()) run.context = json::object();
+  const json config = run.context.value("config", json::object());
+  run.name = config.is_object() ? str(config, "name") : "";
   if (run.name.empty()) run.name = fs::absolute(root).lexically_normal().filename().string();
 
   std::map<std::string, size_t> index;
-  if (summary && summary->contains("cases"))
+  if (summary && summary->contains("cases") && (*summary)["cases"].is_array())
     for (auto& j : (*summary)["cases"]) {
       ReportCase c;
       c.id = str(j, "case_id");
@@ -185,7 +190,7 @@ RunData loadRun(const std::string& dir) {
   std::sort(files.begin(), files.end());
   for (auto& f : files) {
     auto j = readJson(f, run.notes);
-    if (!j) continue;
+    if (!j || !j->is_object()) continue;
     std::string id = str(*j, "case_id");
     if (id.empty()) id = f.stem().string();
     if (!index.count(id)) {
