@@ -9,11 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <tuple>
-
-#include <nlohmann/json.hpp>
 
 #include "error.h"
 #include "report/charts.h"
@@ -63,10 +62,11 @@ std::string tableRow(const std::string& md, const std::string& start) {
 
 // Strips every measurement metric: what a run without measurement passes writes.
 void dropMetrics(const fs::path& run) {
-  const std::set<std::string> timing = {"frames", "gpu_ms", "cpu_ms", "fps_median", "fps_mean", "triangles",
-                                        "patches", "tes_invocations", "fragment_invocations"};
+  const std::set<std::string> timing = {"frames",    "gpu_ms",  "cpu_ms",          "fps_median",          "fps_mean",
+                                        "triangles", "patches", "tes_invocations", "fragment_invocations"};
   auto strip = [&](json& summary) {
-    for (auto it = summary.begin(); it != summary.end();) it = timing.count(it.key()) ? std::next(it) : summary.erase(it);
+    for (auto it = summary.begin(); it != summary.end();)
+      it = timing.count(it.key()) ? std::next(it) : summary.erase(it);
   };
   json s = readJson(run / "summary.json");
   for (auto& c : s["cases"]) strip(c["summary"]);
@@ -77,7 +77,8 @@ void dropMetrics(const fs::path& run) {
     for (auto& f : c["frames"])
       for (auto it = f.begin(); it != f.end();)
         it = (it.key().rfind("hist", 0) == 0 || it.key().rfind("err_", 0) == 0 || it.key().rfind("tri_", 0) == 0)
-                 ? f.erase(it) : std::next(it);
+                 ? f.erase(it)
+                 : std::next(it);
     std::ofstream(e.path()) << c.dump();
   }
 }
@@ -100,7 +101,8 @@ TEST(ReportRun, LoadsFixtureInConfigOrderWithImages) {
   EXPECT_EQ(run.schemes, (std::vector<std::string>{"uniform", "sphere", "phong", "interlock"}));  // config order
   EXPECT_EQ(run.scenarios, (std::vector<std::string>{"flyover", "lowalt"}));
   EXPECT_EQ(run.cases.front().id, "uniform-level4_proc129s1_flyover_96x54");  // level=4 before level=16
-  EXPECT_EQ(run.paramLabels, (std::vector<std::string>{"level=4", "level=16", "tri_size=2", "tri_size=4", "tri_size=8"}));
+  EXPECT_EQ(run.paramLabels,
+            (std::vector<std::string>{"level=4", "level=16", "tri_size=2", "tri_size=4", "tri_size=8"}));
   // Images: exactly the PNGs in the fixture's images/ folder, parsed back to case, frame and mode.
   size_t pngs = 0, indexed = 0;
   for (auto& e : fs::directory_iterator(kFixture / "images")) pngs += e.path().extension() == ".png";
@@ -134,11 +136,12 @@ TEST(ReportWrite, MarkdownHasContextStabilityProblemsAndEveryCase) {
   ASSERT_GT(pixels, 0);
   int worst = phong["summary"]["worst_frames"]["cracks_pixels"];
   std::string row = tableRow(md, "| phong | lowalt |");
-  EXPECT_EQ(row.rfind("| phong | lowalt | 1 / 1 / 0 | " + formatValue(edges) + " | " + formatValue(pixels) + " |", 0), 0u)
+  EXPECT_EQ(row.rfind("| phong | lowalt | 1 / 1 / 0 | " + formatValue(edges) + " | " + formatValue(pixels) + " |", 0),
+            0u)
       << row;
   // The worst cracks frame links to its image (no cracks image in the fixture: the shaded one).
-  EXPECT_NE(row.find("[cracks: phong tri_size=4 f" + std::to_string(worst) + "](../images/phong-tri_size4_proc129s1_lowalt_96x54_f" +
-                     std::to_string(worst) + "_shaded.png)"),
+  EXPECT_NE(row.find("[cracks: phong tri_size=4 f" + std::to_string(worst) +
+                     "](../images/phong-tri_size4_proc129s1_lowalt_96x54_f" + std::to_string(worst) + "_shaded.png)"),
             std::string::npos)
       << row;
   EXPECT_EQ(tableRow(md, "| interlock | flyover |"), "| interlock | flyover | 0 / 0 / 1 | – | – | – | – | – | – |");
@@ -223,7 +226,8 @@ TEST(ReportWrite, SpecsAreVegaLiteWithTheExpectedMarksAndFronts) {
   size_t frames = 0;
   json summary = readJson(run / "summary.json");
   for (auto& c : summary["cases"])
-    if (c["status"] == "ok") frames += readJson(run / "cases" / (c["case_id"].get<std::string>() + ".json"))["frames"].size();
+    if (c["status"] == "ok")
+      frames += readJson(run / "cases" / (c["case_id"].get<std::string>() + ".json"))["frames"].size();
   EXPECT_EQ(timeline.size(), frames);
   json err = readJson(dir / "charts/timeline_error.vl.json");
   EXPECT_EQ(err["transform"][0]["filter"], "isValid(datum.err_mean_px)");

@@ -2,10 +2,9 @@
 // The report's charts, declared as Vega-Lite specifications (https://vega.github.io/vega-lite/)
 // over data rows computed here; report/render.mjs draws them (HTML and SVG). A chart without the
 // metrics it needs is kept as a note saying why it was left out.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "report/run_data.h"
 
@@ -15,10 +14,10 @@ struct Chart {
   std::string id;       // file stem: charts/<id>.vl.json, svg/<id>.svg
   std::string section;  // "speed", "histogram", "timeline"
   std::string title;
-  std::string note;     // non-empty: the chart is omitted, and this says why
-  std::string caption;  // shown under the chart (e.g. cases it could not include)
-  std::string dataName; // data/<dataName>.json, referenced by the spec's data url
-  nlohmann::json spec;  // Vega-Lite
+  std::string note;      // non-empty: the chart is omitted, and this says why
+  std::string caption;   // shown under the chart (e.g. cases it could not include)
+  std::string dataName;  // data/<dataName>.json, referenced by the spec's data url
+  nlohmann::json spec;   // Vega-Lite
   nlohmann::json data = nlohmann::json::array();
 };
 

@@ -16,14 +16,14 @@ struct Series {
   const char* id;
   const char* field;  // per-frame record key
   const char* title;
-  const char* axis;   // y-axis title with unit
-  bool measured;      // only on measurement frames: draw points as well as lines
+  const char* axis;  // y-axis title with unit
+  bool measured;     // only on measurement frames: draw points as well as lines
 };
 constexpr Series kSeries[] = {
     {"timeline_gpu_ms", "gpu_ms", "GPU time along each path", "GPU time (ms)", false},
     {"timeline_triangles", "clip_invocations", "Triangles along each path", "triangles (clipper input)", false},
-    {"timeline_error", "err_mean_px", "Screen-space error along each path",
-     "error (px, mean over terrain pixels)", true},
+    {"timeline_error", "err_mean_px", "Screen-space error along each path", "error (px, mean over terrain pixels)",
+     true},
 };
 
 std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"
@@ -31,34 +31,40 @@ std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"
 }
 
 json facetByScenario(const RunData& run) {
-  return {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"}, {"sort", run.scenarios},
+  return {{"field", "scenario"},
+          {"type", "nominal"},
+          {"title", "camera path"},
+          {"sort", run.scenarios},
           {"header", {{"labelFontSize", 13}}}};
 }
 
 json timelineSpec(const RunData& run, const Series& s, const std::string& yScale) {
-  json x = {{"field", "frame"}, {"type", "quantitative"}, {"title", "frame"},
+  json x = {{"field", "frame"},
+            {"type", "quantitative"},
+            {"title", "frame"},
             {"axis", {{"format", "d"}, {"tickMinStep", 1}}}};
-  json y = {{"field", s.field}, {"type", "quantitative"}, {"title", s.axis},
-            {"scale", valueScale(yScale)}};
-  json encoding = {{"x", x},
-                   {"y", y},
-                   {"color", schemeColor(run)},
-                   {"strokeDash", {{"field", "params"}, {"type", "nominal"}, {"title", "parameters"},
-                                   {"sort", run.paramLabels}}},
-                   {"detail", {{"field", "case_id"}, {"type", "nominal"}}},
-                   {"tooltip", json::array({{{"field", "label"}, {"title", "case"}},
-                                            {{"field", "frame"}},
-                                            {{"field", s.field}, {"title", s.axis}, {"format", ".4~g"}}})}};
-  json layers = json::array({{{"mark", {{"type", "line"}, {"strokeWidth", 1.5}, {"interpolate", "linear"}}},
-                              {"encoding", encoding}}});
+  json y = {{"field", s.field}, {"type", "quantitative"}, {"title", s.axis}, {"scale", valueScale(yScale)}};
+  json encoding = {
+      {"x", x},
+      {"y", y},
+      {"color", schemeColor(run)},
+      {"strokeDash", {{"field", "params"}, {"type", "nominal"}, {"title", "parameters"}, {"sort", run.paramLabels}}},
+      {"detail", {{"field", "case_id"}, {"type", "nominal"}}},
+      {"tooltip", json::array({{{"field", "label"}, {"title", "case"}},
+                               {{"field", "frame"}},
+                               {{"field", s.field}, {"title", s.axis}, {"format", ".4~g"}}})}};
+  json layers = json::array(
+      {{{"mark", {{"type", "line"}, {"strokeWidth", 1.5}, {"interpolate", "linear"}}}, {"encoding", encoding}}});
   if (s.measured) {
     json points = encoding;
     points.erase("strokeDash");
     layers.push_back({{"mark", {{"type", "point"}, {"filled", true}, {"size", 30}}}, {"encoding", points}});
   }
   return {{"$schema", kVegaLiteSchema},
-          {"title", {{"text", s.title}, {"subtitle", s.measured ? "measured frames only; colour: scheme, dash: parameters"
-                                                                : "every timed frame; colour: scheme, dash: parameters"}}},
+          {"title",
+           {{"text", s.title},
+            {"subtitle", s.measured ? "measured frames only; colour: scheme, dash: parameters"
+                                    : "every timed frame; colour: scheme, dash: parameters"}}},
           {"data", {{"url", "data/timeline.json"}}},
           {"transform", {{{"filter", std::string("isValid(datum.") + s.field + ")"}}}},
           {"facet", facetByScenario(run)},
@@ -95,13 +101,20 @@ Chart histogramChart(const RunData& run) {
     }
     for (int i = 0; i < kHistBins; ++i) {
       double n = (*h)[i].is_number() ? (*h)[i].get<double>() : 0;
-      chart.data.push_back({{"case_id", c.id}, {"scheme", c.scheme}, {"params", c.paramsLabel}, {"label", c.label},
-                            {"scenario", c.scenario}, {"bin", labels[i]}, {"bin_index", i}, {"triangles", n},
+      chart.data.push_back({{"case_id", c.id},
+                            {"scheme", c.scheme},
+                            {"params", c.paramsLabel},
+                            {"label", c.label},
+                            {"scenario", c.scenario},
+                            {"bin", labels[i]},
+                            {"bin_index", i},
+                            {"triangles", n},
                             {"share", 100.0 * n / total}});
     }
   }
   if (chart.data.empty()) {
-    chart.note = chart.title + ": left out, no case has a triangle-size histogram (hist_total): the run had no "
+    chart.note = chart.title +
+                 ": left out, no case has a triangle-size histogram (hist_total): the run had no "
                  "measurement passes, or every case failed.";
     return chart;
   }
@@ -112,23 +125,37 @@ Chart histogramChart(const RunData& run) {
                               {{"field", "triangles"}, {"title", "triangles (all measured frames)"}}});
   chart.spec = {
       {"$schema", kVegaLiteSchema},
-      {"title", {{"text", chart.title},
-                 {"subtitle", "share of on-screen, front-facing triangles per area bin, summed over measured frames"}}},
+      {"title",
+       {{"text", chart.title},
+        {"subtitle", "share of on-screen, front-facing triangles per area bin, summed over measured frames"}}},
       {"data", {{"url", "data/" + chart.dataName + ".json"}}},
-      {"facet", {{"row", facetByScenario(run)},
-                 {"column", {{"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"sort", run.schemes},
-                             {"header", {{"labelFontSize", 13}}}}}}},
-      {"spec", {{"width", 300}, {"height", 160},
-                {"mark", {{"type", "bar"}, {"tooltip", true}}},
-                {"encoding", {{"x", {{"field", "bin"}, {"type", "ordinal"}, {"sort", labels},
-                                     {"title", "triangle area on screen (px²)"},
-                                     {"axis", {{"labelAngle", -45}}}}},
-                              {"xOffset", {{"field", "params"}, {"type", "nominal"}, {"sort", run.paramLabels}}},
-                              {"y", {{"field", "share"}, {"type", "quantitative"},
-                                     {"title", "share of triangles (%)"}}},
-                              {"color", {{"field", "params"}, {"type", "nominal"}, {"title", "parameters"},
-                                         {"scale", {{"domain", run.paramLabels}, {"scheme", "dark2"}}}}},
-                              {"tooltip", tooltip}}}}},
+      {"facet",
+       {{"row", facetByScenario(run)},
+        {"column",
+         {{"field", "scheme"},
+          {"type", "nominal"},
+          {"title", "scheme"},
+          {"sort", run.schemes},
+          {"header", {{"labelFontSize", 13}}}}}}},
+      {"spec",
+       {{"width", 300},
+        {"height", 160},
+        {"mark", {{"type", "bar"}, {"tooltip", true}}},
+        {"encoding",
+         {{"x",
+           {{"field", "bin"},
+            {"type", "ordinal"},
+            {"sort", labels},
+            {"title", "triangle area on screen (px²)"},
+            {"axis", {{"labelAngle", -45}}}}},
+          {"xOffset", {{"field", "params"}, {"type", "nominal"}, {"sort", run.paramLabels}}},
+          {"y", {{"field", "share"}, {"type", "quantitative"}, {"title", "share of triangles (%)"}}},
+          {"color",
+           {{"field", "params"},
+            {"type", "nominal"},
+            {"title", "parameters"},
+            {"scale", {{"domain", run.paramLabels}, {"scheme", "dark2"}}}}},
+          {"tooltip", tooltip}}}}},
       // Each cell offsets only its own scheme's settings, so bars keep their width.
       {"resolve", {{"scale", {{"xOffset", "independent"}}}}}};
   return chart;
@@ -139,8 +166,8 @@ std::vector<Chart> timelineCharts(const RunData& run) {
   for (auto& c : run.cases) {
     if (c.status != "ok") continue;
     for (auto& f : c.frames) {
-      json row = {{"case_id", c.id}, {"scheme", c.scheme}, {"params", c.paramsLabel}, {"label", c.label},
-                  {"scenario", c.scenario}, {"frame", frameValue(f, "frame").value_or(0)}};
+      json row = {{"case_id", c.id},  {"scheme", c.scheme},     {"params", c.paramsLabel},
+                  {"label", c.label}, {"scenario", c.scenario}, {"frame", frameValue(f, "frame").value_or(0)}};
       for (const Series& s : kSeries) {
         auto v = frameValue(f, s.field);
         row[s.field] = v ? json(*v) : json(nullptr);

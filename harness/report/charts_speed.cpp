@@ -34,37 +34,53 @@ constexpr Cost kCosts[] = {
 };
 
 json speedSpec(const RunData& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
-  json x = {{"field", "err_px"}, {"type", "quantitative"},
-            {"title", "screen-space error (px, mean over measured frames)"}, {"scale", {{"zero", false}}}};
-  json y = {{"field", cost.field}, {"type", "quantitative"}, {"title", cost.axis},
-            {"scale", valueScale(yScale)}};
+  json x = {{"field", "err_px"},
+            {"type", "quantitative"},
+            {"title", "screen-space error (px, mean over measured frames)"},
+            {"scale", {{"zero", false}}}};
+  json y = {{"field", cost.field}, {"type", "quantitative"}, {"title", cost.axis}, {"scale", valueScale(yScale)}};
   json color = schemeColor(run);
-  json shape = {{"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", chartSchemes(run)}}}};
+  json shape = {
+      {"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", chartSchemes(run)}}}};
   json tooltip = json::array({{{"field", "case_id"}, {"title", "case"}},
                               {{"field", "params"}, {"title", "parameters"}},
                               {{"field", "err_px"}, {"title", "error (px)"}, {"format", ".3f"}},
                               {{"field", cost.field}, {"title", cost.axis}, {"format", ".4~g"}},
                               {{"field", "on_front"}, {"title", "on the Pareto front"}}});
-  json front = {{"transform", {{{"filter", "datum.on_front"}}}},
-                {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.8}}},
-                {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
+  json front = {
+      {"transform", {{{"filter", "datum.on_front"}}}},
+      {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.8}}},
+      {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
   json points = {{"mark", {{"type", "point"}, {"filled", true}, {"size", 80}, {"opacity", 0.9}}},
                  {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"shape", shape}, {"tooltip", tooltip}}}};
   // One row per facet cell carries corner=true, so the annotation is drawn once per cell.
   json better = {{"transform", {{{"filter", "datum.corner"}}}},
-                 {"mark", {{"type", "text"}, {"text", "\u2199 better (faster, more accurate)"}, {"align", "left"},
-                           {"baseline", "bottom"}, {"dx", 6}, {"dy", -6}, {"fontSize", 11}, {"fontStyle", "italic"},
-                           {"color", "#2e7d32"}}},
+                 {"mark",
+                  {{"type", "text"},
+                   {"text", "\u2199 better (faster, more accurate)"},
+                   {"align", "left"},
+                   {"baseline", "bottom"},
+                   {"dx", 6},
+                   {"dy", -6},
+                   {"fontSize", 11},
+                   {"fontStyle", "italic"},
+                   {"color", "#2e7d32"}}},
                  {"encoding", {{"x", {{"value", 0}}}, {"y", {{"value", "height"}}}}}};
   return {{"$schema", kVegaLiteSchema},
-          {"title", {{"text", cost.title},
-                     {"subtitle", "one point per case; lines: each scheme's Pareto front (no other setting of the scheme "
-                                  "is both cheaper and more accurate)"}}},
+          {"title",
+           {{"text", cost.title},
+            {"subtitle",
+             "one point per case; lines: each scheme's Pareto front (no other setting of the scheme "
+             "is both cheaper and more accurate)"}}},
           {"data", {{"url", "data/" + dataName + ".json"}}},
-          {"facet", {{"row", {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"},
-                              {"sort", run.scenarios}}},
-                     {"column", {{"field", "error"}, {"type", "nominal"}, {"title", nullptr},
-                                 {"sort", {kErrors[0].label, kErrors[1].label}}, {"header", {{"labelFontSize", 13}}}}}}},
+          {"facet",
+           {{"row", {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"}, {"sort", run.scenarios}}},
+            {"column",
+             {{"field", "error"},
+              {"type", "nominal"},
+              {"title", nullptr},
+              {"sort", {kErrors[0].label, kErrors[1].label}},
+              {"header", {{"labelFontSize", 13}}}}}}},
           {"spec", {{"width", 320}, {"height", 220}, {"layer", {front, points, better}}}},
           {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
 }
@@ -80,7 +96,9 @@ std::vector<std::string> chartSchemes(const RunData& run) {
 }
 
 json schemeColor(const RunData& run) {
-  return {{"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"},
+  return {{"field", "scheme"},
+          {"type", "nominal"},
+          {"title", "scheme"},
           {"scale", {{"domain", chartSchemes(run)}, {"scheme", "tableau10"}}}};
 }
 
@@ -131,18 +149,24 @@ std::vector<Chart> speedCharts(const RunData& run) {
           std::string cell = key.second + "|" + err.label;
           bool corner = !cornerDone[cell];
           cornerDone[cell] = true;
-          chart.data.push_back({{"case_id", cases[i]->id}, {"scheme", cases[i]->scheme},
-                                {"params", cases[i]->paramsLabel}, {"scenario", cases[i]->scenario},
-                                {"error", err.label}, {"err_px", xs[i]}, {cost.field, costs[i]},
-                                {"on_front", bool(onFront[i])}, {"corner", corner}});
+          chart.data.push_back({{"case_id", cases[i]->id},
+                                {"scheme", cases[i]->scheme},
+                                {"params", cases[i]->paramsLabel},
+                                {"scenario", cases[i]->scenario},
+                                {"error", err.label},
+                                {"err_px", xs[i]},
+                                {cost.field, costs[i]},
+                                {"on_front", bool(onFront[i])},
+                                {"corner", corner}});
           ys.push_back(costs[i]);
         }
       }
     }
     if (chart.data.empty()) {
-      chart.note = std::string(cost.title) +
-                   ": left out, no case has both a cost and a screen-space error (err_mean_px, err_p95_px): the run had "
-                   "no measurement passes, or every case failed.";
+      chart.note =
+          std::string(cost.title) +
+          ": left out, no case has both a cost and a screen-space error (err_mean_px, err_p95_px): the run had "
+          "no measurement passes, or every case failed.";
     } else {
       chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName);
       if (!unmeasured.empty()) {

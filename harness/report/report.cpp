@@ -5,9 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "report/charts.h"
 #include "report/report_page.h"
@@ -66,7 +65,9 @@ ReportOutput writeReport(const ReportOptions& options) {
   ReportOutput result;
   result.dir = out.string();
   result.notes = run.notes;
-  json manifest = {{"title", "lodbench report: " + run.name}, {"run_dir", run.dir}, {"charts", json::array()},
+  json manifest = {{"title", "lodbench report: " + run.name},
+                   {"run_dir", run.dir},
+                   {"charts", json::array()},
                    {"omitted", json::array()}};
   std::set<std::string> written;
   for (auto& c : charts) {

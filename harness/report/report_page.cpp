@@ -33,7 +33,8 @@ class Writer {
  public:
   void heading(int level, const std::string& text, const std::string& id) {
     md_ += "\n" + std::string(size_t(level), '#') + " " + text + "\n\n";
-    html_ += "<h" + std::to_string(level) + " id=\"" + id + "\">" + htmlEscape(text) + "</h" + std::to_string(level) + ">\n";
+    html_ +=
+        "<h" + std::to_string(level) + " id=\"" + id + "\">" + htmlEscape(text) + "</h" + std::to_string(level) + ">\n";
   }
   void para(const std::string& text, const char* cls = nullptr) {
     md_ += (cls ? "> " : "") + text + "\n\n";
@@ -127,8 +128,7 @@ std::vector<Strip> imageStrips(const RunData& run, const std::vector<int>& frame
 Page buildPage(const RunData& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
                const std::string& runHref, const std::vector<std::string>& notes) {
   Writer w;
-  w.raw("# lodbench report: " + run.name + "\n\n",
-        "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
+  w.raw("# lodbench report: " + run.name + "\n\n", "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
   w.para("Run directory " + run.dir + ", " + std::to_string(run.cases.size()) + " cases; report written " +
          isoTimeUtc() + ".");
   for (auto& n : notes) w.para(n, "note");
@@ -144,22 +144,26 @@ Page buildPage(const RunData& run, const std::vector<Chart>& charts, const std::
   for (const Section& s : kChartSections) chartSection(w, s, charts);
 
   w.heading(2, "Stability", "stability");
-  w.para("Per scheme and path, the worst case of each: cracks (analytic: shared patch edges whose tessellation "
-         "factors differ; pixels: background showing through the terrain), popping (mean and p99 absolute RGB "
-         "difference, 0-255, between a frame rendered with the previous frame's LOD and with the live LOD), and the "
-         "share of measured frames where a visible patch hit factor 64. Links go to the worst frame's images.");
+  w.para(
+      "Per scheme and path, the worst case of each: cracks (analytic: shared patch edges whose tessellation "
+      "factors differ; pixels: background showing through the terrain), popping (mean and p99 absolute RGB "
+      "difference, 0-255, between a frame rendered with the previous frame's LOD and with the live LOD), and the "
+      "share of measured frames where a visible patch hit factor 64. Links go to the worst frame's images.");
   w.table(stabilityTable(run, runHref), "stability");
 
   w.heading(2, "Failed and skipped cases", "problems");
   Table problems = problemTable(run);
-  if (problems.rows.empty()) w.para("None: every case ran.");
-  else w.table(problems, "problems");
+  if (problems.rows.empty())
+    w.para("None: every case ran.");
+  else
+    w.table(problems, "problems");
 
   w.heading(2, "Every case", "cases");
   std::vector<std::string> omitted;
   Table cases = caseTable(run, omitted);
-  w.para("Timing statistics over timed frames; error, image and stability metrics are means (cracks: maximum) over "
-         "measured frames. – marks a metric the case does not have.");
+  w.para(
+      "Timing statistics over timed frames; error, image and stability metrics are means (cracks: maximum) over "
+      "measured frames. – marks a metric the case does not have.");
   w.table(cases, "cases");
   if (!omitted.empty()) {
     std::string list;

@@ -63,7 +63,7 @@ std::pair<std::optional<double>, const ReportCase*> maxOver(const std::vector<co
 }
 
 struct Worst {
-  const char* key;    // summary metric and worst_frames key
+  const char* key;  // summary metric and worst_frames key
   const char* label;
   std::vector<const char*> modes;  // preferred image modes for this kind of problem
 };
@@ -100,7 +100,9 @@ Cell worstCell(const RunData& run, const std::vector<const ReportCase*>& cases, 
 
 }  // namespace
 
-std::string imageAnchor(const std::string& caseId, int frame) { return "img-" + caseId + "-f" + std::to_string(frame); }
+std::string imageAnchor(const std::string& caseId, int frame) {
+  return "img-" + caseId + "-f" + std::to_string(frame);
+}
 
 std::vector<int> worstFrames(const ReportCase& c) {
   std::vector<int> frames;
@@ -135,7 +137,8 @@ Table contextTable(const RunData& run) {
   row("device", text(x, "device") + " (vendor " + text(x, "vendor_id") + ", device " + text(x, "device_id") + ")");
   row("driver", text(x, "driver") + ", " + text(x, "driver_info") + ", version " + text(x, "driver_version"));
   row("Vulkan API", text(x, "api_version") + ", timestampPeriod " + text(x, "timestamp_period_ns") + " ns");
-  row("lodbench", text(x, "tool_version") + ", " + text(x, "build_type") + " build, validation " + text(x, "validation"));
+  row("lodbench",
+      text(x, "tool_version") + ", " + text(x, "build_type") + " build, validation " + text(x, "validation"));
   t.rows.push_back({textCell("git commit"), codeCell(text(x, "git_commit"))});
   row("host", text(x, "host"));
   row("time", text(run.run, "start_time") + " to " + text(run.run, "end_time"));
@@ -148,9 +151,12 @@ Table contextTable(const RunData& run) {
 Table caseTable(const RunData& run, std::vector<std::string>& omitted) {
   std::vector<const Column*> cols;
   for (const Column& col : kCaseColumns) {
-    bool any = std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return columnValue(c, col).has_value(); });
-    if (any) cols.push_back(&col);
-    else omitted.push_back(col.header);
+    bool any =
+        std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return columnValue(c, col).has_value(); });
+    if (any)
+      cols.push_back(&col);
+    else
+      omitted.push_back(col.header);
   }
   Table t{{"case", "scheme", "parameters", "path", "status"}, {}, {false, false, false, false, false}};
   for (auto* col : cols) {
@@ -184,14 +190,14 @@ Table stabilityTable(const RunData& run, const std::string& runHref) {
       }
       if (all.empty()) continue;
       auto sat = maxOver(ok, "saturated_fraction", "").first;
-      t.rows.push_back({textCell(scheme), textCell(scenario),
-                        textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " +
-                                 std::to_string(skipped)),
-                        textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
-                        textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
-                        textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
-                        textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
-                        textCell(sat ? formatValue(100 * *sat) + " %" : "–"), worstCell(run, ok, runHref)});
+      t.rows.push_back(
+          {textCell(scheme), textCell(scenario),
+           textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
+           textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
+           textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
+           textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
+           textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
+           textCell(sat ? formatValue(100 * *sat) + " %" : "–"), worstCell(run, ok, runHref)});
     }
   return t;
 }

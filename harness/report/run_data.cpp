@@ -50,7 +50,8 @@ static void fillCase(ReportCase& c, const json& j) {
   if (j.contains("params") && j["params"].is_object()) c.params = j["params"];
   if (j.contains("summary") && j["summary"].is_object()) c.summary = j["summary"];
   if (j.contains("frames") && j["frames"].is_array()) c.frames = j["frames"];
-  if (auto t = j.find("terrain"); t != j.end()) c.terrain = t->is_object() ? str(*t, "label") : t->is_string() ? t->get<std::string>() : "";
+  if (auto t = j.find("terrain"); t != j.end())
+    c.terrain = t->is_object() ? str(*t, "label") : t->is_string() ? t->get<std::string>() : "";
   if (auto r = j.find("resolution");
       r != j.end() && r->is_array() && r->size() == 2 && (*r)[0].is_number_integer() && (*r)[1].is_number_integer()) {
     c.width = (*r)[0].get<int>();
@@ -118,8 +119,8 @@ static void sortCases(RunData& run) {
   if (!config.is_object()) config = json::object();
   json schemes = config.value("schemes", json::array()), paths = config.value("paths", json::array());
   auto key = [&](const ReportCase& c) {
-    return std::make_tuple(configIndex(schemes, c.scheme, false), configIndex(paths, fs::path(c.path).stem().string(), true),
-                           c.scheme, c.scenario);
+    return std::make_tuple(configIndex(schemes, c.scheme, false),
+                           configIndex(paths, fs::path(c.path).stem().string(), true), c.scheme, c.scenario);
   };
   std::stable_sort(run.cases.begin(), run.cases.end(), [&](const ReportCase& a, const ReportCase& b) {
     auto ka = key(a), kb = key(b);
@@ -147,7 +148,8 @@ static void labelCases(RunData& run) {
     if (c.status == "ok" &&
         std::find(run.paramLabels.begin(), run.paramLabels.end(), c.paramsLabel) == run.paramLabels.end())
       run.paramLabels.push_back(c.paramsLabel);
-    if (std::find(run.schemes.begin(), run.schemes.end(), c.scheme) == run.schemes.end()) run.schemes.push_back(c.scheme);
+    if (std::find(run.schemes.begin(), run.schemes.end(), c.scheme) == run.schemes.end())
+      run.schemes.push_back(c.scheme);
     if (std::find(run.scenarios.begin(), run.scenarios.end(), c.scenario) == run.scenarios.end())
       run.scenarios.push_back(c.scenario);
   }
@@ -163,8 +165,10 @@ RunData loadRun(const std::string& dir) {
   if (!hasSummary && !hasCases)
     throw InputError(dir + ": not a lodbench run directory (no summary.json and no cases/; run `lodbench run` first)");
 
-  if (auto r = readJson(root / "run.json", run.notes); r && r->is_object()) run.run = *r;
-  else run.notes.push_back("run.json missing: the run's context comes from summary.json");
+  if (auto r = readJson(root / "run.json", run.notes); r && r->is_object())
+    run.run = *r;
+  else
+    run.notes.push_back("run.json missing: the run's context comes from summary.json");
   std::optional<json> summary = hasSummary ? readJson(root / "summary.json", run.notes) : std::nullopt;
   if (summary && !summary->is_object()) summary.reset();
   if (!summary) run.notes.push_back("summary.json missing (interrupted run?): cases are read from cases/");
@@ -225,12 +229,17 @@ std::string formatValue(double v) {
   char buf[64];
   double a = std::fabs(v);
   if (!std::isfinite(v)) return v != v ? "nan" : v > 0 ? "inf" : "-inf";
-  if (a >= 1000 || (a >= 1 && v == std::floor(v))) std::snprintf(buf, sizeof buf, "%.0f", v);
-  else if (a >= 0.001 || a == 0) std::snprintf(buf, sizeof buf, "%.3g", v);
-  else std::snprintf(buf, sizeof buf, "%.2e", v);
+  if (a >= 1000 || (a >= 1 && v == std::floor(v)))
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else if (a >= 0.001 || a == 0)
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.2e", v);
   return buf;
 }
 
-std::string formatValue(const std::optional<double>& v) { return v ? formatValue(*v) : "–"; }
+std::string formatValue(const std::optional<double>& v) {
+  return v ? formatValue(*v) : "–";
+}
 
 }  // namespace lb

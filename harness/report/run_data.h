@@ -3,11 +3,10 @@
 // cases/*.json (docs/results-format.md). Missing files and missing metrics are not errors: the
 // report says what it could not show.
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace lb {
 
@@ -31,12 +30,12 @@ struct RunData {
   std::string name;  // config name, or the directory name
   nlohmann::json run = nlohmann::json::object();
   nlohmann::json context = nlohmann::json::object();
-  std::vector<ReportCase> cases;        // config order: scheme, path, then parameter values
+  std::vector<ReportCase> cases;             // config order: scheme, path, then parameter values
   std::map<std::string, CaseImages> images;  // by case id, from images/<case>_f<frame>_<mode>.png
-  std::vector<std::string> schemes;     // in order of first appearance (fixes chart colours)
+  std::vector<std::string> schemes;          // in order of first appearance (fixes chart colours)
   std::vector<std::string> scenarios;
   std::vector<std::string> paramLabels;  // parameter labels of finished cases, natural order
-  std::vector<std::string> notes;       // files that were missing or unreadable
+  std::vector<std::string> notes;        // files that were missing or unreadable
 };
 
 // Throws InputError when dir is not a run directory (neither summary.json nor cases/).

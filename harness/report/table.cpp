@@ -6,11 +6,20 @@ std::string htmlEscape(const std::string& s) {
   std::string o;
   o.reserve(s.size());
   for (char ch : s) switch (ch) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += ch;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += ch;
     }
   return o;
 }
@@ -19,19 +28,27 @@ std::string htmlEscape(const std::string& s) {
 static std::string mdEscape(const std::string& s) {
   std::string o;
   for (char ch : s) {
-    if (ch == '|') o += "\\|";
-    else if (ch == '\n') o += ' ';
-    else o += ch;
+    if (ch == '|')
+      o += "\\|";
+    else if (ch == '\n')
+      o += ' ';
+    else
+      o += ch;
   }
   return o;
 }
 
-Cell textCell(const std::string& s) { return {mdEscape(s), htmlEscape(s)}; }
+Cell textCell(const std::string& s) {
+  return {mdEscape(s), htmlEscape(s)};
+}
 
-Cell codeCell(const std::string& s) { return {"`" + mdEscape(s) + "`", "<code>" + htmlEscape(s) + "</code>"}; }
+Cell codeCell(const std::string& s) {
+  return {"`" + mdEscape(s) + "`", "<code>" + htmlEscape(s) + "</code>"};
+}
 
 Cell linkCell(const std::string& text, const std::string& mdHref, const std::string& htmlHref) {
-  return {"[" + mdEscape(text) + "](" + mdHref + ")", "<a href=\"" + htmlEscape(htmlHref) + "\">" + htmlEscape(text) + "</a>"};
+  return {"[" + mdEscape(text) + "](" + mdHref + ")",
+          "<a href=\"" + htmlEscape(htmlHref) + "\">" + htmlEscape(text) + "</a>"};
 }
 
 Cell joinCells(const std::vector<Cell>& cells, const std::string& mdSep, const std::string& htmlSep) {
@@ -47,7 +64,9 @@ Cell joinCells(const std::vector<Cell>& cells, const std::string& mdSep, const s
   return out;
 }
 
-static bool isNumeric(const Table& t, size_t col) { return col < t.numeric.size() && t.numeric[col]; }
+static bool isNumeric(const Table& t, size_t col) {
+  return col < t.numeric.size() && t.numeric[col];
+}
 
 std::string toMarkdown(const Table& t) {
   std::string s = "|";
@@ -69,7 +88,8 @@ std::string toHtml(const Table& t, const std::string& cssClass) {
   s += "</tr></thead>\n<tbody>\n";
   for (auto& row : t.rows) {
     s += "<tr>";
-    for (size_t i = 0; i < row.size(); ++i) s += (isNumeric(t, i) ? "<td class=\"num\">" : "<td>") + row[i].html + "</td>";
+    for (size_t i = 0; i < row.size(); ++i)
+      s += (isNumeric(t, i) ? "<td class=\"num\">" : "<td>") + row[i].html + "</td>";
     s += "</tr>\n";
   }
   return s + "</tbody>\n</table>\n";
