@@ -23,7 +23,7 @@ const fixture = path.join(root, 'tests/data/report_run');
 const launchArgs = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
                     '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 
-test('report.html renders every chart offline without errors', async () => {
+test('report.html renders every chart offline without errors or warnings', async () => {
   fs.rmSync(out, {recursive: true, force: true});
   execFileSync(binary, ['report', fixture, '--out', out], {stdio: 'inherit'});
   const manifest = JSON.parse(fs.readFileSync(path.join(out, 'manifest.json'), 'utf8'));
@@ -37,7 +37,8 @@ test('report.html renders every chart offline without errors', async () => {
   try {
     const page = await browser.newPage();
     const problems = [];
-    page.on('console', (m) => { if (m.type() === 'error') problems.push('console: ' + m.text()); });
+    // Vega reports spec problems as console warnings: treat them like errors.
+    page.on('console', (m) => { if (['error', 'warning'].includes(m.type())) problems.push(`console ${m.type()}: ${m.text()}`); });
     page.on('pageerror', (e) => problems.push('page error: ' + e.message));
     // Any request that is not the page itself or inline data would mean the page is not self-contained.
     const external = [];
