@@ -192,6 +192,7 @@ TEST(ReportWrite, SpecsAreVegaLiteWithTheExpectedMarksAndFronts) {
   EXPECT_EQ(layers[1]["encoding"]["color"]["scale"]["domain"], json({"uniform", "sphere", "phong"}));
   EXPECT_EQ(layers[2]["mark"]["type"], "text");
   EXPECT_EQ(layers[2]["encoding"]["y"]["value"], "height");  // lower-left corner
+  EXPECT_NE(layers[2]["mark"]["text"].get<std::string>().find("better (faster"), std::string::npos);
 
   // Fronts: within a scheme, path and error kind, a point is on the front iff nothing dominates it.
   json rows = readJson(dir / "data/speed_gpu_ms.json");

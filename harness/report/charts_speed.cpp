@@ -23,14 +23,17 @@ constexpr ErrorKind kErrors[] = {{"err_mean_px", "mean error"}, {"err_p95_px", "
 
 struct Cost {
   const char* id;
-  const char* key;    // summary statistics object
-  const char* field;  // data column
-  const char* title;  // chart title
-  const char* axis;   // y-axis title, with unit
+  const char* key;     // summary statistics object
+  const char* field;   // data column
+  const char* title;   // chart title
+  const char* axis;    // y-axis title, with unit
+  const char* better;  // the lower-left corner's annotation
 };
 constexpr Cost kCosts[] = {
-    {"speed_gpu_ms", "gpu_ms", "gpu_ms", "GPU time vs screen-space error", "GPU time per frame (ms, median)"},
-    {"speed_triangles", "triangles", "triangles", "Triangles vs screen-space error", "triangles per frame (median)"},
+    {"speed_gpu_ms", "gpu_ms", "gpu_ms", "GPU time vs screen-space error", "GPU time per frame (ms, median)",
+     "\u2199 better (faster, more accurate)"},
+    {"speed_triangles", "triangles", "triangles", "Triangles vs screen-space error", "triangles per frame (median)",
+     "\u2199 better (fewer triangles, more accurate)"},
 };
 
 json speedSpec(const RunData& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
@@ -57,7 +60,7 @@ json speedSpec(const RunData& run, const Cost& cost, const std::string& yScale, 
   json better = {{"transform", {{{"filter", "datum.corner"}}}},
                  {"mark",
                   {{"type", "text"},
-                   {"text", "\u2199 better (faster, more accurate)"},
+                   {"text", cost.better},
                    {"align", "left"},
                    {"baseline", "bottom"},
                    {"dx", 6},
