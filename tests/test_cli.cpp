@@ -30,7 +30,7 @@ const std::string kSrc = LODBENCH_SOURCE_DIR;
 }  // namespace
 
 TEST(Cli, HelpOnEverySubcommand) {
-  for (const char* sub : {"", "list", "devices", "run", "render"}) {
+  for (const char* sub : {"", "list", "devices", "run", "render", "report"}) {
     Out o = runCli(std::string(sub) + " --help");
     EXPECT_EQ(o.code, 0) << sub << ": " << o.text;
     EXPECT_NE(o.text.find("Usage"), std::string::npos) << sub;

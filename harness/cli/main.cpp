@@ -1,4 +1,4 @@
-// lodbench: command-line entry point. Subcommands: list, devices, run, render.
+// lodbench: command-line entry point. Subcommands: list, devices, run, render, merge, report.
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include "sweep/merge.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
+#include "report/report.h"
 #include "schemes/registry.h"
 #include "sweep/config.h"
 #include "sweep/runner.h"
@@ -161,6 +162,15 @@ int main(int argc, char** argv) {
   modes->add_flag("--cracks", ra.cracks, "Crack mask against the reference scheme (red over a dimmed frame)");
   modes->require_option(0, 1);
 
+  auto* report = app.add_subcommand("report", "Report a run: report.md, Vega-Lite charts and (with Node) report.html");
+  ReportOptions rep;
+  bool noHtml = false;
+  report->add_option("run-dir", rep.runDir, "Run directory, e.g. results/quick/<run-id>")->required();
+  report->add_option("--out", rep.outDir, "Report directory (default: <run-dir>/report)");
+  report->add_option("--frames", rep.frames, "Frames for the image strips, e.g. 0,240 (default: all with images)")
+      ->delimiter(',');
+  report->add_flag("--no-html", noHtml, "Write Markdown and chart specs only (do not run report/render.mjs)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -176,6 +186,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "lodbench: merged %d cases (%d duplicates) from %zu runs -> %s\n", t.cases, t.duplicates,
                    mergeInputs.size(), mergeOut.c_str());
       return 0;
+    }
+    if (*report) {
+      rep.html = !noHtml;
+      return reportCommand(rep);
     }
     if (*run) {
       Config config = loadConfig(configFile);

@@ -1,0 +1,200 @@
+// Charts over frames (design section 8): triangle-size histograms from the summaries' summed
+// bins, and per-frame timelines along each camera path from the case files.
+#include <cmath>
+
+#include "report/charts.h"
+
+namespace lb {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr int kHistBins = 15;
+
+struct Series {
+  const char* id;
+  const char* field;  // per-frame record key
+  const char* title;
+  const char* axis;  // y-axis title with unit
+  bool measured;     // only on measurement frames: draw points as well as lines
+};
+constexpr Series kSeries[] = {
+    {"timeline_gpu_ms", "gpu_ms", "GPU time along each path", "GPU time (ms)", false},
+    {"timeline_triangles", "clip_invocations", "Triangles along each path", "triangles (clipper input)", false},
+    {"timeline_error", "err_mean_px", "Screen-space error along each path", "error (px, mean over terrain pixels)",
+     true},
+};
+
+std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"
+  return exponent < 0 ? "1/" + std::to_string(1 << -exponent) : std::to_string(1 << exponent);
+}
+
+json facetByScenario(const RunData& run) {
+  return {{"field", "scenario"},
+          {"type", "nominal"},
+          {"title", "camera path"},
+          {"sort", run.scenarios},
+          {"header", {{"labelFontSize", 13}}}};
+}
+
+json timelineSpec(const RunData& run, const Series& s, const std::string& yScale) {
+  json x = {{"field", "frame"},
+            {"type", "quantitative"},
+            {"title", "frame"},
+            {"axis", {{"format", "d"}, {"tickMinStep", 1}}}};
+  json y = {{"field", s.field}, {"type", "quantitative"}, {"title", s.axis}, {"scale", valueScale(yScale)}};
+  json encoding = {
+      {"x", x},
+      {"y", y},
+      {"color", schemeColor(run)},
+      {"strokeDash", {{"field", "params"}, {"type", "nominal"}, {"title", "parameters"}, {"sort", run.paramLabels}}},
+      {"detail", {{"field", "case_id"}, {"type", "nominal"}}},
+      {"tooltip", json::array({{{"field", "label"}, {"title", "case"}},
+                               {{"field", "frame"}},
+                               {{"field", s.field}, {"title", s.axis}, {"format", ".4~g"}}})}};
+  json layers = json::array(
+      {{{"mark", {{"type", "line"}, {"strokeWidth", 1.5}, {"interpolate", "linear"}}}, {"encoding", encoding}}});
+  if (s.measured) {
+    json points = encoding;
+    points.erase("strokeDash");
+    layers.push_back({{"mark", {{"type", "point"}, {"filled", true}, {"size", 30}}}, {"encoding", points}});
+  }
+  return {{"$schema", kVegaLiteSchema},
+          {"title",
+           {{"text", s.title},
+            {"subtitle", s.measured ? "measured frames only; colour: scheme, dash: parameters"
+                                    : "every timed frame; colour: scheme, dash: parameters"}}},
+          {"data", {{"url", "data/timeline.json"}}},
+          {"transform", {{{"filter", std::string("isValid(datum.") + s.field + ")"}}}},
+          {"facet", facetByScenario(run)},
+          {"columns", 2},
+          {"spec", {{"width", 380}, {"height", 200}, {"layer", layers}}},
+          {"resolve", {{"scale", {{"y", "independent"}}}}}};
+}
+
+}  // namespace
+
+std::vector<std::string> histogramBinLabels() {
+  std::vector<std::string> labels{"<1/8"};
+  for (int i = -3; i < 10; ++i) labels.push_back(fraction(i) + "-" + fraction(i + 1));
+  labels.push_back(">=1024");
+  return labels;
+}
+
+Chart histogramChart(const RunData& run) {
+  Chart chart;
+  chart.id = chart.dataName = "triangle_sizes";
+  chart.section = "histogram";
+  chart.title = "Triangle sizes on screen";
+  std::vector<std::string> labels = histogramBinLabels();
+  std::string missing;
+  for (auto& c : run.cases) {
+    if (c.status != "ok") continue;
+    auto h = c.summary.find("hist_total");
+    double total = 0;
+    if (h != c.summary.end() && h->is_array() && h->size() == kHistBins)
+      for (auto& v : *h) total += v.is_number() ? v.get<double>() : 0;
+    if (total <= 0) {
+      missing += (missing.empty() ? "" : ", ") + c.label + " (" + c.scenario + ")";
+      continue;
+    }
+    for (int i = 0; i < kHistBins; ++i) {
+      double n = (*h)[i].is_number() ? (*h)[i].get<double>() : 0;
+      chart.data.push_back({{"case_id", c.id},
+                            {"scheme", c.scheme},
+                            {"params", c.paramsLabel},
+                            {"label", c.label},
+                            {"scenario", c.scenario},
+                            {"bin", labels[i]},
+                            {"bin_index", i},
+                            {"triangles", n},
+                            {"share", 100.0 * n / total}});
+    }
+  }
+  if (chart.data.empty()) {
+    chart.note = chart.title +
+                 ": left out, no case has a triangle-size histogram (hist_total): the run had no "
+                 "measurement passes, or every case failed.";
+    return chart;
+  }
+  if (!missing.empty()) chart.caption = "Not shown (no histogram): " + missing + ".";
+  json tooltip = json::array({{{"field", "label"}, {"title", "case"}},
+                              {{"field", "bin"}, {"title", "area (px²)"}},
+                              {{"field", "share"}, {"title", "share (%)"}, {"format", ".1f"}},
+                              {{"field", "triangles"}, {"title", "triangles (all measured frames)"}}});
+  chart.spec = {
+      {"$schema", kVegaLiteSchema},
+      {"title",
+       {{"text", chart.title},
+        {"subtitle", "share of on-screen, front-facing triangles per area bin, summed over measured frames"}}},
+      {"data", {{"url", "data/" + chart.dataName + ".json"}}},
+      {"facet",
+       {{"row", facetByScenario(run)},
+        {"column",
+         {{"field", "scheme"},
+          {"type", "nominal"},
+          {"title", "scheme"},
+          {"sort", run.schemes},
+          {"header", {{"labelFontSize", 13}}}}}}},
+      {"spec",
+       {{"width", 300},
+        {"height", 160},
+        {"mark", {{"type", "bar"}, {"tooltip", true}}},
+        {"encoding",
+         {{"x",
+           {{"field", "bin"},
+            {"type", "ordinal"},
+            {"sort", labels},
+            {"title", "triangle area on screen (px²)"},
+            {"axis", {{"labelAngle", -45}}}}},
+          {"xOffset", {{"field", "params"}, {"type", "nominal"}, {"sort", run.paramLabels}}},
+          {"y", {{"field", "share"}, {"type", "quantitative"}, {"title", "share of triangles (%)"}}},
+          {"color",
+           {{"field", "params"},
+            {"type", "nominal"},
+            {"title", "parameters"},
+            {"scale", {{"domain", run.paramLabels}, {"scheme", "dark2"}}}}},
+          {"tooltip", tooltip}}}}},
+      // Each cell offsets only its own scheme's settings, so bars keep their width.
+      {"resolve", {{"scale", {{"xOffset", "independent"}}}}}};
+  return chart;
+}
+
+std::vector<Chart> timelineCharts(const RunData& run) {
+  json rows = json::array();
+  for (auto& c : run.cases) {
+    if (c.status != "ok") continue;
+    for (auto& f : c.frames) {
+      json row = {{"case_id", c.id},  {"scheme", c.scheme},     {"params", c.paramsLabel},
+                  {"label", c.label}, {"scenario", c.scenario}, {"frame", frameValue(f, "frame").value_or(0)}};
+      for (const Series& s : kSeries) {
+        auto v = frameValue(f, s.field);
+        row[s.field] = v ? json(*v) : json(nullptr);
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  std::vector<Chart> charts;
+  for (const Series& s : kSeries) {
+    Chart chart;
+    chart.id = s.id;
+    chart.dataName = "timeline";
+    chart.section = "timeline";
+    chart.title = s.title;
+    std::vector<double> values;
+    for (auto& r : rows)
+      if (r[s.field].is_number()) values.push_back(r[s.field].get<double>());
+    if (values.empty()) {
+      chart.note = chart.title + ": left out, no frame has " + s.field +
+                   (s.measured ? " (the run had no measurement passes)" : " (no case has per-frame records)") + ".";
+    } else {
+      chart.data = rows;
+      chart.spec = timelineSpec(run, s, scaleTypeFor(values));
+    }
+    charts.push_back(std::move(chart));
+  }
+  return charts;
+}
+
+}  // namespace lb

@@ -1,0 +1,214 @@
+#include "report/report_tables.h"
+
+#include <algorithm>
+
+namespace lb {
+
+using nlohmann::json;
+
+namespace {
+
+std::string text(const json& obj, const char* key) {
+  auto it = obj.find(key);
+  if (it == obj.end() || it->is_null()) return "–";
+  return it->is_string() ? it->get<std::string>() : it->dump();
+}
+
+std::optional<double> plainNumber(const json& obj, const char* key) {
+  auto it = obj.find(key);
+  return it != obj.end() && it->is_number() ? std::optional<double>(it->get<double>()) : std::nullopt;
+}
+
+// A summary column: summary[key][stat], or summary[key] itself when stat is empty.
+struct Column {
+  const char* header;
+  const char* key;
+  const char* stat;
+};
+constexpr Column kCaseColumns[] = {
+    {"frames", "frames", ""},
+    {"GPU ms median", "gpu_ms", "median"},
+    {"GPU ms p95", "gpu_ms", "p95"},
+    {"CPU ms median", "cpu_ms", "median"},
+    {"FPS median", "fps_median", ""},
+    {"triangles median", "triangles", "median"},
+    {"patches median", "patches", "median"},
+    {"error mean px", "err_mean_px", "mean"},
+    {"error p95 px", "err_p95_px", "mean"},
+    {"PSNR dB", "img_psnr_db", "mean"},
+    {"SSIM", "img_ssim", "mean"},
+    {"cracks px max", "cracks_pixels", "max"},
+    {"popping mean", "pop_mean", "mean"},
+    {"surplus", "surplus", "mean"},
+    {"measured frames", "measured_frames", ""},
+};
+
+std::optional<double> columnValue(const ReportCase& c, const Column& col) {
+  return *col.stat ? summaryStat(c.summary, col.key, col.stat) : plainNumber(c.summary, col.key);
+}
+
+// The largest value of summary[key][stat] over cases, and the case that has it.
+std::pair<std::optional<double>, const ReportCase*> maxOver(const std::vector<const ReportCase*>& cases,
+                                                            const char* key, const char* stat) {
+  std::optional<double> best;
+  const ReportCase* at = nullptr;
+  for (auto* c : cases) {
+    auto v = *stat ? summaryStat(c->summary, key, stat) : plainNumber(c->summary, key);
+    if (v && (!best || *v > *best)) {
+      best = v;
+      at = c;
+    }
+  }
+  return {best, at};
+}
+
+struct Worst {
+  const char* key;  // summary metric and worst_frames key
+  const char* label;
+  std::vector<const char*> modes;  // preferred image modes for this kind of problem
+};
+const Worst kWorst[] = {{"cracks_pixels", "cracks", {"cracks", "shaded", "wireframe"}},
+                        {"pop_mean", "popping", {"shaded", "heatmap"}},
+                        {"err_p95_px", "error", {"error", "heatmap", "shaded"}}};
+
+Cell worstCell(const RunData& run, const std::vector<const ReportCase*>& cases, const std::string& runHref) {
+  std::vector<Cell> parts;
+  for (const Worst& w : kWorst) {
+    auto [value, c] = maxOver(cases, w.key, "max");
+    if (!value || *value <= 0 || !c) continue;  // nothing went wrong: no frame to point at
+    auto f = c->summary.find("worst_frames");
+    if (f == c->summary.end() || !f->is_object() || !(*f)[w.key].is_number_integer()) continue;
+    int frame = (*f)[w.key].get<int>();
+    std::string label = std::string(w.label) + ": " + c->label + " f" + std::to_string(frame);
+    auto imgs = run.images.find(c->id);
+    const std::map<std::string, std::string>* modes = nullptr;
+    if (imgs != run.images.end() && imgs->second.count(frame)) modes = &imgs->second.at(frame);
+    if (!modes) {
+      parts.push_back(textCell(label + " (no image)"));
+      continue;
+    }
+    std::string file = modes->begin()->second;
+    for (auto* m : w.modes)
+      if (modes->count(m)) {
+        file = modes->at(m);
+        break;
+      }
+    parts.push_back(linkCell(label, runHref + "/" + file, "#" + imageAnchor(c->id, frame)));
+  }
+  return parts.empty() ? textCell("–") : joinCells(parts, "; ", "<br>");
+}
+
+}  // namespace
+
+std::string imageAnchor(const std::string& caseId, int frame) {
+  return "img-" + caseId + "-f" + std::to_string(frame);
+}
+
+std::vector<int> worstFrames(const ReportCase& c) {
+  std::vector<int> frames;
+  auto f = c.summary.find("worst_frames");
+  if (f == c.summary.end() || !f->is_object()) return frames;
+  for (const Worst& w : kWorst) {
+    auto v = summaryStat(c.summary, w.key, "max");
+    if (v && *v > 0 && (*f)[w.key].is_number_integer()) frames.push_back((*f)[w.key].get<int>());
+  }
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  return frames;
+}
+
+std::string worstOf(const ReportCase& c, int frame) {
+  std::string s;
+  auto f = c.summary.find("worst_frames");
+  if (f == c.summary.end() || !f->is_object()) return s;
+  for (const Worst& w : kWorst) {
+    auto v = summaryStat(c.summary, w.key, "max");
+    if (v && *v > 0 && (*f)[w.key] == frame) s += (s.empty() ? "" : ", ") + std::string(w.label);
+  }
+  return s;
+}
+
+Table contextTable(const RunData& run) {
+  const json& x = run.context;
+  const json totals = run.run.value("totals", json::object());
+  Table t{{"item", "value"}, {}, {}};
+  auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({textCell(k), textCell(v)}); };
+  row("config", run.name + " (" + text(x, "config_file") + ")");
+  row("device", text(x, "device") + " (vendor " + text(x, "vendor_id") + ", device " + text(x, "device_id") + ")");
+  row("driver", text(x, "driver") + ", " + text(x, "driver_info") + ", version " + text(x, "driver_version"));
+  row("Vulkan API", text(x, "api_version") + ", timestampPeriod " + text(x, "timestamp_period_ns") + " ns");
+  row("lodbench",
+      text(x, "tool_version") + ", " + text(x, "build_type") + " build, validation " + text(x, "validation"));
+  t.rows.push_back({textCell("git commit"), codeCell(text(x, "git_commit"))});
+  row("host", text(x, "host"));
+  row("time", text(run.run, "start_time") + " to " + text(run.run, "end_time"));
+  row("cases", text(totals, "cases") + " (" + text(totals, "ok") + " ok, " + text(totals, "failed") + " failed, " +
+                   text(totals, "skipped") + " skipped)");
+  row("validation errors", text(run.run, "validation_errors"));
+  return t;
+}
+
+Table caseTable(const RunData& run, std::vector<std::string>& omitted) {
+  std::vector<const Column*> cols;
+  for (const Column& col : kCaseColumns) {
+    bool any =
+        std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return columnValue(c, col).has_value(); });
+    if (any)
+      cols.push_back(&col);
+    else
+      omitted.push_back(col.header);
+  }
+  Table t{{"case", "scheme", "parameters", "path", "status"}, {}, {false, false, false, false, false}};
+  for (auto* col : cols) {
+    t.header.push_back(col->header);
+    t.numeric.push_back(true);
+  }
+  for (auto& c : run.cases) {
+    std::vector<Cell> row{codeCell(c.id), textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
+                          textCell(c.status)};
+    for (auto* col : cols) row.push_back(textCell(formatValue(columnValue(c, *col))));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+Table stabilityTable(const RunData& run, const std::string& runHref) {
+  Table t{{"scheme", "path", "cases ok / failed / skipped", "cracks: edges (max)", "cracks: pixels (max)",
+           "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "worst frames"},
+          {},
+          {false, false, false, true, true, true, true, true, false}};
+  for (auto& scheme : run.schemes)
+    for (auto& scenario : run.scenarios) {
+      std::vector<const ReportCase*> all, ok;
+      int failed = 0, skipped = 0;
+      for (auto& c : run.cases) {
+        if (c.scheme != scheme || c.scenario != scenario) continue;
+        all.push_back(&c);
+        if (c.status == "ok") ok.push_back(&c);
+        failed += c.status == "failed";
+        skipped += c.status == "skipped";
+      }
+      if (all.empty()) continue;
+      auto sat = maxOver(ok, "saturated_fraction", "").first;
+      t.rows.push_back(
+          {textCell(scheme), textCell(scenario),
+           textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
+           textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
+           textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
+           textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
+           textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
+           textCell(sat ? formatValue(100 * *sat) + " %" : "–"), worstCell(run, ok, runHref)});
+    }
+  return t;
+}
+
+Table problemTable(const RunData& run) {
+  Table t{{"case", "scheme", "parameters", "path", "status", "reason"}, {}, {}};
+  for (auto& c : run.cases)
+    if (c.status != "ok")
+      t.rows.push_back({codeCell(c.id), textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
+                        textCell(c.status), textCell(c.reason.empty() ? "(no reason recorded)" : c.reason)});
+  return t;
+}
+
+}  // namespace lb

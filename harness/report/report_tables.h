@@ -1,0 +1,27 @@
+#pragma once
+// The report's tables: run context, every case's summary, stability per scheme and path, and the
+// cases that failed or were skipped.
+#include <string>
+#include <vector>
+
+#include "report/run_data.h"
+#include "report/table.h"
+
+namespace lb {
+
+// runHref: the run directory as seen from the report directory ("..", or a relative path when
+// --out puts the report elsewhere); Markdown links to images go through it.
+Table contextTable(const RunData& run);
+// omitted receives the columns no case has (left out of the table).
+Table caseTable(const RunData& run, std::vector<std::string>& omitted);
+Table stabilityTable(const RunData& run, const std::string& runHref);
+Table problemTable(const RunData& run);
+
+// In-page anchor of one frame's image strip.
+std::string imageAnchor(const std::string& caseId, int frame);
+// Frames the stability table links to (worst cracks, popping, error), for the image strips.
+std::vector<int> worstFrames(const ReportCase& c);
+// What frame is the worst of for this case ("cracks, error"), or "".
+std::string worstOf(const ReportCase& c, int frame);
+
+}  // namespace lb
