@@ -74,6 +74,10 @@ TEST(ImageMetrics, CrackPixelsFindHolesNotSilhouettes) {
   EXPECT_EQ(mask[size_t(20 * w + 5)], 1);
   EXPECT_EQ(mask[size_t(9 * w + 12)], 0);
   EXPECT_EQ(mask[size_t(9 * w + 31)], 0);
+  // A gap on the image border may open onto background beyond the image: not counted either.
+  RgbaImage edge = img;
+  for (int y = 14; y < 16; ++y) setPx(edge, 0, y, 255, 0, 255);
+  EXPECT_EQ(crackPixels(edge, ref), 20);
   // The same crack reaching up to the sky (a column of clear pixels at x = 4 touching its first
   // pixel diagonally) joins the background and is not counted: the price of never flagging a silhouette.
   for (int y = 8; y < 20; ++y) setPx(img, 4, y, 255, 0, 255);

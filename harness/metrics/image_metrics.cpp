@@ -113,12 +113,13 @@ long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<u
     }
     return before && after;
   };
-  // Clear pixels of img connected to the background (clear in both images): silhouette gaps.
+  // Clear pixels of img connected to the background (clear in both images, or on the image
+  // border, past which the background may continue off-screen): silhouette gaps, not holes.
   std::vector<uint8_t> background(size_t(w) * size_t(h), 0);
   std::vector<int> stack;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (isClear(img, x, y) && isClear(reference, x, y)) {
+      if (isClear(img, x, y) && (isClear(reference, x, y) || x == 0 || y == 0 || x == w - 1 || y == h - 1)) {
         background[size_t(y) * size_t(w) + size_t(x)] = 1;
         stack.push_back(y * w + x);
       }

@@ -29,8 +29,9 @@ bool isClear(const RgbaImage& img, int x, int y);
 // Crack pixels: clear colour in `img` where the crack-free `reference` shows terrain, and the
 // pixel is enclosed by terrain of `img` within `reach` pixels on both sides horizontally or
 // vertically, and its clear region of `img` (8-connected) touches no pixel the reference shows as
-// clear too (a hole inside the terrain, not a silhouette difference: a coarser silhouette's notch
-// opens onto the sky, however narrow; so does a crack that reaches the silhouette, which is missed).
+// clear too and does not touch the image border (a hole inside the terrain, not a silhouette
+// difference: a coarser silhouette's notch opens onto the sky, however narrow, possibly beyond the
+// image border; a crack that reaches the silhouette or the border is missed).
 // Returns the count; mask is 0/1 per pixel.
 long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<uint8_t>* mask = nullptr, int reach = 3);
 
