@@ -1,4 +1,4 @@
-// lodbench: command-line entry point. Subcommands: list, devices, run, render.
+// lodbench: command-line entry point. Subcommands: list, devices, run, render, compare, ab, gbench.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -6,11 +6,13 @@
 #include <CLI/CLI.hpp>
 
 #include "camera/camera_path.h"
+#include "compare/commands.h"
 #include "error.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "schemes/registry.h"
 #include "sweep/config.h"
+#include "sweep/gbench_json.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -107,6 +109,11 @@ int main(int argc, char** argv) {
   run->add_option("--device", runDevice, "Vulkan device: name substring or index (overrides the config)");
   run->add_flag("--validation", ro.validation, "Enable the Vulkan validation layer");
   run->add_flag("-q,--quiet", quiet, "No progress output");
+  double testSlowdown = 0;
+  run->add_option("--test-slowdown", testSlowdown,
+                  "Testing only: redraw this fraction of the patches inside the timed region (planted regression)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group("Testing");
 
   auto* render = app.add_subcommand("render", "Render one frame of a camera path to PNG");
   RenderArgs ra;
@@ -132,6 +139,34 @@ int main(int argc, char** argv) {
   modes->add_flag("--heatmap", ra.heatmap, "Tessellation level heat map (log2: blue 1, green 8, red 64)");
   modes->require_option(0, 1);
 
+  // compare / ab / gbench (design section 8): regression checks and Google Benchmark JSON.
+  auto* compare = app.add_subcommand("compare", "Check a candidate run against a baseline; exit 1 on a regression");
+  std::string baselineDir, candidateDir;
+  compare->add_option("baseline", baselineDir, "Baseline run directory, e.g. results/baseline/ci")->required();
+  compare->add_option("candidate", candidateDir, "Candidate run directory")->required();
+  auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B A B ...) and compare");
+  AbOptions abo;
+  ab->add_option("--baseline", abo.baseline, "lodbench binary A (baseline)")->required();
+  ab->add_option("--candidate", abo.candidate, "lodbench binary B (candidate)")->required();
+  ab->add_option("config", abo.config, "Config file both binaries run")->required();
+  ab->add_option("--rounds", abo.rounds, "Runs per binary")->capture_default_str()->check(CLI::Range(1, 1000));
+  ab->add_option("--out", abo.outDir, "Directory for the rounds (default results/ab/<time>)");
+  CompareOptions co;
+  VerdictFiles vf;
+  for (CLI::App* sub : {compare, ab}) {
+    sub->add_option("--threshold", co.threshold, "Timing regression when slower than 1 + threshold (and significant)")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    sub->add_option("--alpha", co.alpha, "Significance level of the Mann-Whitney test")
+        ->capture_default_str()->check(CLI::Range(1e-9, 0.5));
+    sub->add_option("--error-tolerance", co.errorTolerance, "Relative worsening of accuracy metrics allowed")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    sub->add_option("--json", vf.json, "Write the verdict as JSON");
+    sub->add_option("--md", vf.md, "Write the verdict as Markdown");
+  }
+  auto* gbench = app.add_subcommand("gbench", "Write <run-dir>/gbench.json in Google Benchmark's JSON schema");
+  std::string gbenchDir;
+  gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -141,9 +176,16 @@ int main(int argc, char** argv) {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
+    if (*compare) return compareCommand(baselineDir, candidateDir, co, vf);
+    if (*ab) return abCommand(abo, co, vf);
+    if (*gbench) {
+      std::printf("%s\n", writeGoogleBenchmarkJson(gbenchDir).c_str());
+      return 0;
+    }
     if (*run) {
       Config config = loadConfig(configFile);
       if (!runDevice.empty()) config.device = runDevice;
+      config.testSlowdown = testSlowdown;
       ro.progress = !quiet;
       RunTotals t = runSweep(config, ro);
       std::printf("%s\n", t.dir.c_str());

@@ -33,6 +33,10 @@ struct TriangleHistogram {
 struct RenderSettings {
   int width = 320, height = 180;
   int grid = 32;  // patches per side
+  // Testing only (planted regression): timing frames redraw this fraction of the patches, spread
+  // evenly over the grid, in a second pass after the statistics query and before the closing
+  // timestamp, so GPU time grows by about the fraction while the counters stay exact.
+  double testSlowdown = 0;
 };
 
 struct PipelineStats {

@@ -36,6 +36,7 @@ struct Config {
   std::vector<SchemeEntry> schemes;
   ImageRequest images;
   nlohmann::json raw;      // the config as written, recorded in results
+  double testSlowdown = 0; // `run --test-slowdown` (tests only, never from JSON): see RenderSettings
 };
 
 struct Case {

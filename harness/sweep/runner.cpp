@@ -43,7 +43,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
   Heightfield terrain = makeHeightfield(c.terrain);
   CameraPath path = loadCameraPath(c.path);
-  RenderSettings settings{c.width, c.height, config.grid};
+  RenderSettings settings{c.width, c.height, config.grid, config.testSlowdown};
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, c.params);
   int frames = frameCount(path, config.fps);
@@ -137,6 +137,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   json context = runContext(ctx, config);
   std::string runJson = totals.dir + "/run.json";
   json run = {{"schema_version", kSchemaVersion}, {"context", context}, {"start_time", context["time"]}};
+  if (config.testSlowdown > 0) run["test_slowdown"] = config.testSlowdown;  // so no one mistakes it for data
   writeFileAtomic(runJson, run.dump(2));
 
   auto cases = expandCases(config);

@@ -1,0 +1,39 @@
+#include "compare/commands.h"
+
+#include <cctype>
+#include <cstdio>
+
+#include "compare/verdict.h"
+#include "sweep/results.h"
+
+namespace lb {
+
+static int report(const CompareReport& r, const VerdictFiles& files) {
+  std::fputs(verdictMarkdown(r).c_str(), stdout);
+  writeVerdict(r, files.json, files.md);
+  std::fprintf(stderr, "lodbench compare: %s: %d of %zu cases regressed, %d improved\n",
+               r.exitCode() ? "REGRESSION" : "clean", r.regressions(), r.cases.size(), r.improvements());
+  return r.exitCode();
+}
+
+int compareCommand(const std::string& baselineDir, const std::string& candidateDir, const CompareOptions& options,
+                   const VerdictFiles& files) {
+  RunData baseline = loadRun(baselineDir);
+  RunData candidate = loadRun(candidateDir);
+  return report(compareRuns(baseline, candidate, options), files);
+}
+
+int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files) {
+  if (ab.outDir.empty()) {
+    std::string id;  // 2026-11-21T19:36:00Z -> 20261121-193600
+    for (char ch : isoTimeUtc())
+      if (std::isdigit(static_cast<unsigned char>(ch))) id += ch;
+    ab.outDir = "results/ab/" + id.insert(8, "-");
+  }
+  if (files.json.empty()) files.json = ab.outDir + "/compare.json";
+  if (files.md.empty()) files.md = ab.outDir + "/compare.md";
+  AbRuns runs = runAb(ab);
+  return report(compareRuns(runs.baseline, runs.candidate, options), files);
+}
+
+}  // namespace lb

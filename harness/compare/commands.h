@@ -1,0 +1,20 @@
+#pragma once
+// The compare and ab subcommands behind the CLI (harness/cli/main.cpp only wires their flags).
+#include <string>
+
+#include "compare/ab.h"
+#include "compare/compare.h"
+
+namespace lb {
+
+struct VerdictFiles {
+  std::string json, md;  // "" = not written
+};
+
+// Prints the Markdown verdict on stdout, writes the files, returns 0 (clean) or 1 (regression).
+int compareCommand(const std::string& baselineDir, const std::string& candidateDir, const CompareOptions& options,
+                   const VerdictFiles& files);
+// Runs the rounds, then compares; verdict files default to <out>/compare.{json,md}.
+int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files);
+
+}  // namespace lb
