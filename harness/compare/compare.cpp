@@ -14,7 +14,8 @@ using nlohmann::json;
 const char* const kTimingMethod =
     "ratio = median(candidate GPU ms) / median(baseline GPU ms) over every timing frame; interval: percentile "
     "bootstrap (2000 resamples of each side, splitmix64 seed 0x10DBE7C4) at confidence 1 - alpha; p: two-sided "
-    "Mann-Whitney U, normal approximation with tie and continuity correction";
+    "Mann-Whitney U, normal approximation with tie and continuity correction; with several rounds a side (A/B "
+    "mode) the median of the per-round ratios must pass the threshold as well";
 
 namespace {
 
@@ -133,10 +134,25 @@ void compareTiming(const CaseData& b, const CaseData& c, const CompareOptions& o
   t.lo = ci.lo;
   t.hi = ci.hi;
   t.p = mannWhitneyU(b.gpuMs, c.gpuMs).p;
+  // Frames of one process share its conditions (load, clocks), so a single disturbed round can make
+  // pooled frames differ "significantly"; with rounds, the change must also hold round by round.
+  const size_t rounds = std::min(b.roundMedians.size(), c.roundMedians.size());
+  bool slower = t.ratio > 1.0 + o.threshold, faster = t.ratio < 1.0 / (1.0 + o.threshold);
+  if (rounds >= 2) {
+    std::vector<double> ratios;
+    for (size_t i = 0; i < rounds; ++i)
+      if (b.roundMedians[i] > 0) ratios.push_back(c.roundMedians[i] / b.roundMedians[i]);
+    if (!ratios.empty()) {
+      t.rounds = int(ratios.size());
+      t.roundRatio = median(ratios);
+      slower = slower && t.roundRatio > 1.0 + o.threshold;
+      faster = faster && t.roundRatio < 1.0 / (1.0 + o.threshold);
+    }
+  }
   bool significant = t.p < o.alpha;
-  if (significant && t.ratio > 1.0 + o.threshold)
+  if (significant && slower)
     t.verdict = TimingVerdict::Regression;
-  else if (significant && t.ratio < 1.0 / (1.0 + o.threshold))
+  else if (significant && faster)
     t.verdict = TimingVerdict::Improvement;
   else
     t.verdict = TimingVerdict::Unchanged;

@@ -3,7 +3,8 @@
 //  - exact: per-frame pipeline-statistics counters and deterministic measurements must be equal
 //    (only when both runs come from the same device and driver);
 //  - timing: ratio of median GPU ms with a bootstrap interval, two-sided Mann-Whitney U test;
-//    a regression is significant (p < alpha) AND slower than 1 + threshold;
+//    a regression is significant (p < alpha) AND slower than 1 + threshold (with rounds, as in A/B
+//    mode, the median of the per-round ratios must be beyond the threshold too);
 //  - accuracy: screen-space error and image metrics may not get worse beyond a tolerance.
 #include <string>
 #include <vector>
@@ -35,6 +36,10 @@ struct TimingCheck {
   double ratio = 0, lo = 0, hi = 0;        // candidate / baseline with its interval
   double p = 1;
   int nBaseline = 0, nCandidate = 0;
+  // A/B mode (several rounds a side): median over rounds i of candidate_i / baseline_i, the
+  // medians of rounds run next to each other; 0 when there are fewer than 2 rounds a side.
+  double roundRatio = 0;
+  int rounds = 0;
 };
 
 struct AccuracyCheck {

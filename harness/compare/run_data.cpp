@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "metrics/stats.h"
 
 namespace lb {
 
@@ -41,6 +42,7 @@ static void addCase(RunData& run, const std::string& file) {
     c.rounds = 1;
     for (auto& f : c.frames)
       if (f.contains("gpu_ms") && f["gpu_ms"].is_number()) c.gpuMs.push_back(f["gpu_ms"].get<double>());
+    if (!c.gpuMs.empty()) c.roundMedians.push_back(percentile(c.gpuMs, 50));
   }
   if (run.cases.count(c.id)) throw InputError(file + ": case_id '" + c.id + "' appears in two case files");
   run.cases[c.id] = std::move(c);
@@ -86,6 +88,7 @@ RunData poolRuns(const std::vector<RunData>& rounds) {
       if (p.status != "ok") continue;
       p.gpuMs.insert(p.gpuMs.end(), c.gpuMs.begin(), c.gpuMs.end());
       p.rounds += c.rounds;
+      p.roundMedians.insert(p.roundMedians.end(), c.roundMedians.begin(), c.roundMedians.end());
     }
   }
   return pooled;

@@ -17,6 +17,7 @@ struct CaseData {
   nlohmann::json frames = nlohmann::json::array();  // per-frame records of the first round
   nlohmann::json summary = nlohmann::json::object();
   std::vector<double> gpuMs;        // every timing frame of every ok round, pooled
+  std::vector<double> roundMedians; // median GPU ms of each round, in run order
   int rounds = 0;                   // ok rounds pooled into gpuMs
 };
 

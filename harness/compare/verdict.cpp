@@ -46,6 +46,7 @@ json verdictJson(const CompareReport& r) {
     } else {
       timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio},
                      {"ci_lo", t.lo}, {"ci_hi", t.hi}, {"p", t.p}});
+      if (t.rounds) timing.update({{"rounds", t.rounds}, {"round_ratio", t.roundRatio}});
     }
     json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
     if (c.exactDiffers)
@@ -131,7 +132,9 @@ std::string verdictMarkdown(const CompareReport& r) {
     }
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
       << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline
-      << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict) << " |\n";
+      << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict);
+    if (t.rounds) m << " (per-round ratio " << num(t.roundRatio, "%.3f") << ", " << t.rounds << " rounds)";
+    m << " |\n";
   }
 
   bool anyAccuracy = false;
