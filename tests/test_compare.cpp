@@ -214,20 +214,40 @@ RunData pooledRounds(const std::string& name, const std::vector<double>& levels)
 // next to each other) the ratios are 1, 1.5, 1, 1 with median 1: no regression. A real 30%
 // slowdown shows in every pair.
 TEST(Compare, RoundsMustAgreeWithThePooledFrames) {
+  CompareOptions paired;
+  paired.pairedRounds = true;
   RunData a = pooledRounds("rounds_a", {1.0, 1.0, 1.5, 1.5});
-  CompareReport r = compareRuns(a, pooledRounds("rounds_b", {1.0, 1.5, 1.5, 1.5}), {});
+  CompareReport r = compareRuns(a, pooledRounds("rounds_b", {1.0, 1.5, 1.5, 1.5}), paired);
   const TimingCheck& t = only(r).timing;
   EXPECT_GT(t.ratio, 1.1);
   EXPECT_LT(t.p, 0.01);
-  EXPECT_EQ(t.rounds, 4);
+  EXPECT_TRUE(t.pairedRounds);
+  EXPECT_EQ(t.roundsBaseline, 4);
   EXPECT_DOUBLE_EQ(t.roundRatio, 1.0);
   EXPECT_EQ(t.verdict, TimingVerdict::Unchanged);
   EXPECT_EQ(r.exitCode(), 0);
 
-  r = compareRuns(a, pooledRounds("rounds_c", {1.3, 1.3, 1.95, 1.95}), {});
+  r = compareRuns(a, pooledRounds("rounds_c", {1.3, 1.3, 1.95, 1.95}), paired);
   EXPECT_NEAR(only(r).timing.roundRatio, 1.3, 1e-12);
   EXPECT_EQ(only(r).timing.verdict, TimingVerdict::Regression);
   EXPECT_EQ(r.exitCode(), 1);
+}
+
+// One baseline run against three candidate rounds (the CI check): one disturbed round (x2.5) does
+// not move the median of the round medians; a slowdown in most rounds does.
+TEST(Compare, CandidateRoundsOutvoteOneDisturbedRound) {
+  RunData base = pooledRounds("ci_base", {1.0});
+  CompareOptions ci;
+  ci.threshold = 1.0;
+  CompareReport r = compareRuns(base, pooledRounds("ci_one_bad", {1.0, 2.5, 1.02}), ci);
+  const TimingCheck& t = only(r).timing;
+  EXPECT_FALSE(t.pairedRounds);
+  EXPECT_EQ(t.roundsBaseline, 1);
+  EXPECT_EQ(t.roundsCandidate, 3);
+  // Every round has the same 2% spread pattern, so round medians scale with the level: 1.02 / 1.0.
+  EXPECT_NEAR(t.roundRatio, 1.02, 1e-12);
+  EXPECT_EQ(r.exitCode(), 0);
+  EXPECT_EQ(compareRuns(base, pooledRounds("ci_slow", {2.5, 2.4, 1.0}), ci).exitCode(), 1);
 }
 
 TEST(Compare, InputErrorsNameTheFile) {

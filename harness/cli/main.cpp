@@ -141,9 +141,11 @@ int main(int argc, char** argv) {
 
   // compare / ab / gbench (design section 8): regression checks and Google Benchmark JSON.
   auto* compare = app.add_subcommand("compare", "Check a candidate run against a baseline; exit 1 on a regression");
-  std::string baselineDir, candidateDir;
+  std::string baselineDir;
+  std::vector<std::string> candidateDirs;
   compare->add_option("baseline", baselineDir, "Baseline run directory, e.g. results/baseline/ci")->required();
-  compare->add_option("candidate", candidateDir, "Candidate run directory")->required();
+  compare->add_option("candidate", candidateDirs, "Candidate run directory; several = rounds of one config, pooled")
+      ->required();
   auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B A B ...) and compare");
   AbOptions abo;
   ab->add_option("--baseline", abo.baseline, "lodbench binary A (baseline)")->required();
@@ -176,7 +178,7 @@ int main(int argc, char** argv) {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
-    if (*compare) return compareCommand(baselineDir, candidateDir, co, vf);
+    if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
     if (*ab) return abCommand(abo, co, vf);
     if (*gbench) {
       std::printf("%s\n", writeGoogleBenchmarkJson(gbenchDir).c_str());

@@ -16,11 +16,12 @@ static int report(const CompareReport& r, const VerdictFiles& files) {
   return r.exitCode();
 }
 
-int compareCommand(const std::string& baselineDir, const std::string& candidateDir, const CompareOptions& options,
-                   const VerdictFiles& files) {
+int compareCommand(const std::string& baselineDir, const std::vector<std::string>& candidateDirs,
+                   const CompareOptions& options, const VerdictFiles& files) {
   RunData baseline = loadRun(baselineDir);
-  RunData candidate = loadRun(candidateDir);
-  return report(compareRuns(baseline, candidate, options), files);
+  std::vector<RunData> rounds;
+  for (auto& dir : candidateDirs) rounds.push_back(loadRun(dir));
+  return report(compareRuns(baseline, poolRuns(rounds), options), files);
 }
 
 int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files) {
@@ -33,7 +34,9 @@ int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files) {
   if (files.json.empty()) files.json = ab.outDir + "/compare.json";
   if (files.md.empty()) files.md = ab.outDir + "/compare.md";
   AbRuns runs = runAb(ab);
-  return report(compareRuns(runs.baseline, runs.candidate, options), files);
+  CompareOptions paired = options;
+  paired.pairedRounds = true;  // round i of A and of B ran one after the other
+  return report(compareRuns(runs.baseline, runs.candidate, paired), files);
 }
 
 }  // namespace lb

@@ -1,6 +1,7 @@
 #pragma once
 // The compare and ab subcommands behind the CLI (harness/cli/main.cpp only wires their flags).
 #include <string>
+#include <vector>
 
 #include "compare/ab.h"
 #include "compare/compare.h"
@@ -12,8 +13,9 @@ struct VerdictFiles {
 };
 
 // Prints the Markdown verdict on stdout, writes the files, returns 0 (clean) or 1 (regression).
-int compareCommand(const std::string& baselineDir, const std::string& candidateDir, const CompareOptions& options,
-                   const VerdictFiles& files);
+// Several candidate directories are rounds of one config, pooled (poolRuns).
+int compareCommand(const std::string& baselineDir, const std::vector<std::string>& candidateDirs,
+                   const CompareOptions& options, const VerdictFiles& files);
 // Runs the rounds, then compares; verdict files default to <out>/compare.{json,md}.
 int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files);
 

@@ -14,8 +14,9 @@ using nlohmann::json;
 const char* const kTimingMethod =
     "ratio = median(candidate GPU ms) / median(baseline GPU ms) over every timing frame; interval: percentile "
     "bootstrap (2000 resamples of each side, splitmix64 seed 0x10DBE7C4) at confidence 1 - alpha; p: two-sided "
-    "Mann-Whitney U, normal approximation with tie and continuity correction; with several rounds a side (A/B "
-    "mode) the median of the per-round ratios must pass the threshold as well";
+    "Mann-Whitney U, normal approximation with tie and continuity correction; with several rounds (A/B mode, or "
+    "several candidate runs) the ratio of the rounds' medians (A/B: median of the per-pair ratios) must pass the "
+    "threshold as well";
 
 namespace {
 
@@ -134,20 +135,25 @@ void compareTiming(const CaseData& b, const CaseData& c, const CompareOptions& o
   t.lo = ci.lo;
   t.hi = ci.hi;
   t.p = mannWhitneyU(b.gpuMs, c.gpuMs).p;
-  // Frames of one process share its conditions (load, clocks), so a single disturbed round can make
-  // pooled frames differ "significantly"; with rounds, the change must also hold round by round.
-  const size_t rounds = std::min(b.roundMedians.size(), c.roundMedians.size());
+  // Frames of one process share its conditions (load, clocks), so one disturbed round can make
+  // pooled frames differ "significantly"; with rounds, the change must also hold round by round:
+  // the median of the per-pair ratios (A/B rounds run side by side), else the ratio of the
+  // medians of the round medians (rounds recorded at different times).
+  const size_t nb = b.roundMedians.size(), nc = c.roundMedians.size();
   bool slower = t.ratio > 1.0 + o.threshold, faster = t.ratio < 1.0 / (1.0 + o.threshold);
-  if (rounds >= 2) {
-    std::vector<double> ratios;
-    for (size_t i = 0; i < rounds; ++i)
-      if (b.roundMedians[i] > 0) ratios.push_back(c.roundMedians[i] / b.roundMedians[i]);
-    if (!ratios.empty()) {
-      t.rounds = int(ratios.size());
+  if (nb >= 1 && nc >= 1 && std::max(nb, nc) >= 2) {
+    t.roundsBaseline = int(nb);
+    t.roundsCandidate = int(nc);
+    t.pairedRounds = o.pairedRounds && nb == nc;
+    if (t.pairedRounds) {
+      std::vector<double> ratios;
+      for (size_t i = 0; i < nb; ++i) ratios.push_back(c.roundMedians[i] / b.roundMedians[i]);
       t.roundRatio = median(ratios);
-      slower = slower && t.roundRatio > 1.0 + o.threshold;
-      faster = faster && t.roundRatio < 1.0 / (1.0 + o.threshold);
+    } else {
+      t.roundRatio = median(c.roundMedians) / median(b.roundMedians);
     }
+    slower = slower && t.roundRatio > 1.0 + o.threshold;
+    faster = faster && t.roundRatio < 1.0 / (1.0 + o.threshold);
   }
   bool significant = t.p < o.alpha;
   if (significant && slower)

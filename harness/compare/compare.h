@@ -3,8 +3,8 @@
 //  - exact: per-frame pipeline-statistics counters and deterministic measurements must be equal
 //    (only when both runs come from the same device and driver);
 //  - timing: ratio of median GPU ms with a bootstrap interval, two-sided Mann-Whitney U test;
-//    a regression is significant (p < alpha) AND slower than 1 + threshold (with rounds, as in A/B
-//    mode, the median of the per-round ratios must be beyond the threshold too);
+//    a regression is significant (p < alpha) AND slower than 1 + threshold (with several rounds,
+//    as in A/B mode, the ratio of the rounds' medians must be beyond the threshold too);
 //  - accuracy: screen-space error and image metrics may not get worse beyond a tolerance.
 #include <string>
 #include <vector>
@@ -17,6 +17,7 @@ struct CompareOptions {
   double threshold = 0.10;       // timing: regression when ratio > 1 + threshold (and significant)
   double alpha = 0.01;           // significance level; the ratio interval is at 1 - alpha
   double errorTolerance = 0.02;  // accuracy: relative change in the worse direction allowed
+  bool pairedRounds = false;     // round i of each side ran side by side (A/B mode)
 };
 
 struct ExactDiff {
@@ -36,10 +37,12 @@ struct TimingCheck {
   double ratio = 0, lo = 0, hi = 0;        // candidate / baseline with its interval
   double p = 1;
   int nBaseline = 0, nCandidate = 0;
-  // A/B mode (several rounds a side): median over rounds i of candidate_i / baseline_i, the
-  // medians of rounds run next to each other; 0 when there are fewer than 2 rounds a side.
+  // With several rounds on a side (0 otherwise): paired (A/B mode) = median over i of
+  // candidate_i / baseline_i of the rounds' medians; else median of the candidate's round medians
+  // over the median of the baseline's.
   double roundRatio = 0;
-  int rounds = 0;
+  int roundsBaseline = 0, roundsCandidate = 0;
+  bool pairedRounds = false;
 };
 
 struct AccuracyCheck {

@@ -46,7 +46,9 @@ json verdictJson(const CompareReport& r) {
     } else {
       timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio},
                      {"ci_lo", t.lo}, {"ci_hi", t.hi}, {"p", t.p}});
-      if (t.rounds) timing.update({{"rounds", t.rounds}, {"round_ratio", t.roundRatio}});
+      if (t.roundsBaseline)
+        timing.update({{"rounds_baseline", t.roundsBaseline}, {"rounds_candidate", t.roundsCandidate},
+                       {"paired_rounds", t.pairedRounds}, {"round_ratio", t.roundRatio}});
     }
     json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
     if (c.exactDiffers)
@@ -133,7 +135,11 @@ std::string verdictMarkdown(const CompareReport& r) {
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
       << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline
       << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict);
-    if (t.rounds) m << " (per-round ratio " << num(t.roundRatio, "%.3f") << ", " << t.rounds << " rounds)";
+    if (t.roundsBaseline)
+      m << " (rounds x" << num(t.roundRatio, "%.3f") << ", "
+        << (t.pairedRounds ? std::to_string(t.roundsBaseline) + " pairs"
+                           : std::to_string(t.roundsBaseline) + " vs " + std::to_string(t.roundsCandidate) + " rounds")
+        << ")";
     m << " |\n";
   }
 

@@ -39,7 +39,8 @@ TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
   for (auto& c : v["cases"]) {
     EXPECT_EQ(c["exact"]["differs"], false) << c["case_id"];  // deterministic counters across processes
     EXPECT_EQ(c["timing"]["n_baseline"], 4 * 60);              // 4 rounds x 30 frames x 2 repetitions
-    EXPECT_EQ(c["timing"]["rounds"], 4);
+    EXPECT_EQ(c["timing"]["rounds_candidate"], 4);
+    EXPECT_EQ(c["timing"]["paired_rounds"], true);
   }
   for (const char* d : {"a1", "b1", "a4", "b4", "compare.md"}) EXPECT_TRUE(fs::exists(out + "/" + d)) << d;
 }
