@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <utility>
 
 #include "compare/significance.h"
 
@@ -245,6 +246,9 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
   if (cand.testSlowdown > 0)
     r.notes.push_back("the candidate ran with a planted test slowdown of " + fmt(cand.testSlowdown) +
                       " (run --test-slowdown)");
+  for (auto [side, run] : {std::pair{"baseline", &base}, std::pair{"candidate", &cand}})
+    if (run->context.value("validation", false))
+      r.notes.push_back(std::string("the ") + side + " ran with the validation layer on: its timings include its overhead");
   if (base.testSlowdown > 0)
     r.notes.push_back("the baseline ran with a planted test slowdown of " + fmt(base.testSlowdown));
 
