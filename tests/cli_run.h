@@ -1,15 +1,14 @@
 #pragma once
 // Running the lodbench binary from tests: exit code and combined output.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace lb::test {
 
@@ -40,6 +39,8 @@ inline std::string freshDir(const std::string& name) {
   return d;
 }
 
-inline nlohmann::json readJson(const std::string& file) { return nlohmann::json::parse(std::ifstream(file)); }
+inline nlohmann::json readJson(const std::string& file) {
+  return nlohmann::json::parse(std::ifstream(file));
+}
 
 }  // namespace lb::test

@@ -1,13 +1,13 @@
 #pragma once
 // Hand-made run directories (docs/results-format.md) for tests of compare and gbench.json:
 // every figure is chosen here, so expectations follow from the inputs.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 namespace lb::test {
 
@@ -15,16 +15,27 @@ using nlohmann::json;
 
 inline json runContext(const std::string& device = "llvmpipe (LLVM 15.0.6, 256 bits)",
                        const std::string& driverInfo = "Mesa 22.3.6 (LLVM 15.0.6)") {
-  return {{"tool", "lodbench"}, {"device", device}, {"driver", "llvmpipe"}, {"driver_info", driverInfo},
-          {"git_commit", "abc123"}, {"host", "testhost"}, {"time", "2026-11-21T20:00:00Z"}, {"build_type", "release"},
+  return {{"tool", "lodbench"},
+          {"device", device},
+          {"driver", "llvmpipe"},
+          {"driver_info", driverInfo},
+          {"git_commit", "abc123"},
+          {"host", "testhost"},
+          {"time", "2026-11-21T20:00:00Z"},
+          {"build_type", "release"},
           {"config", {{"repetitions", 1}}}};
 }
 
 // One timing frame: counters derived from the frame index, so equal inputs give equal counters.
 inline json frameRecord(int frame, double gpuMs) {
-  return {{"frame", frame},        {"gpu_ms", gpuMs},          {"cpu_ms", 2.0 * gpuMs},
-          {"patches", 64},         {"tes_invocations", 1000 + frame}, {"clip_invocations", 2000 + 2 * frame},
-          {"clip_primitives", 1900 + 2 * frame}, {"fragment_invocations", 30000 + frame}};
+  return {{"frame", frame},
+          {"gpu_ms", gpuMs},
+          {"cpu_ms", 2.0 * gpuMs},
+          {"patches", 64},
+          {"tes_invocations", 1000 + frame},
+          {"clip_invocations", 2000 + 2 * frame},
+          {"clip_primitives", 1900 + 2 * frame},
+          {"fragment_invocations", 30000 + frame}};
 }
 
 // gpu ms of frame i: base * (1 + 0.02 * ((7 i) mod 11) / 10): a deterministic 2% spread.
@@ -37,8 +48,13 @@ inline std::vector<double> gpuTimes(int frames, double base) {
 inline json caseDoc(const std::string& id, const std::vector<double>& gpu, const std::string& status = "ok") {
   json frames = json::array();
   for (size_t i = 0; i < gpu.size(); ++i) frames.push_back(frameRecord(int(i), gpu[i]));
-  return {{"schema_version", 1}, {"case_id", id}, {"scheme", "uniform"}, {"status", status},
-          {"reason", status == "ok" ? "" : "device lost"}, {"summary", json::object()}, {"frames", frames}};
+  return {{"schema_version", 1},
+          {"case_id", id},
+          {"scheme", "uniform"},
+          {"status", status},
+          {"reason", status == "ok" ? "" : "device lost"},
+          {"summary", json::object()},
+          {"frames", frames}};
 }
 
 inline void writeText(const std::string& file, const std::string& text) {

@@ -1,9 +1,9 @@
 // configs/ci.json covers every registered scheme, and the committed baseline matches it case for
 // case (so adding a scheme fails here until scripts/refresh-baseline.sh records it).
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <set>
-
-#include <gtest/gtest.h>
 
 #include "compare/run_data.h"
 #include "schemes/registry.h"

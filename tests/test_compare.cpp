@@ -1,10 +1,10 @@
 // lodbench compare on hand-made runs: case matching, exact checks, the timing rule, accuracy,
 // statuses, pooling, and the CLI's exit codes and verdict files.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
-
-#include <gtest/gtest.h>
 
 #include "compare/compare.h"
 #include "compare/run_data.h"
@@ -17,8 +17,8 @@ namespace {
 
 using test::caseDoc;
 using test::gpuTimes;
-using test::runContext;
 using test::json;
+using test::runContext;
 using test::writeRun;
 
 CompareReport compareDirs(const std::string& a, const std::string& b, CompareOptions o = {}) {
@@ -108,9 +108,9 @@ TEST(Compare, DifferentFrameSetIsAnExactDifference) {
 TEST(Compare, ExactChecksSkippedWithReasonOnAnotherDriver) {
   json changed = caseDoc("x", gpuTimes(30, 1));
   changed["frames"][3]["patches"] = 1;
-  CompareReport r = compareDirs(writeRun("drv_a", runContext(), {caseDoc("x", gpuTimes(30, 1))}),
-                                writeRun("drv_b", runContext("llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 24.0"),
-                                         {changed}));
+  CompareReport r =
+      compareDirs(writeRun("drv_a", runContext(), {caseDoc("x", gpuTimes(30, 1))}),
+                  writeRun("drv_b", runContext("llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 24.0"), {changed}));
   EXPECT_FALSE(r.exactChecked);
   EXPECT_NE(r.exactSkipReason.find("context.driver_info differs"), std::string::npos) << r.exactSkipReason;
   EXPECT_FALSE(only(r).exactChecked);
@@ -158,12 +158,14 @@ TEST(Compare, TooFewFramesAreNeverSignificant) {
 
 TEST(Compare, AccuracyMayNotGetWorseBeyondTolerance) {
   json a = caseDoc("x", gpuTimes(20, 1)), b = a;
-  a["summary"] = {{"err_mean_px", {{"mean", 1.0}}}, {"err_p95_px", {{"mean", 3.0}}},
-                  {"img_psnr_db", {{"mean", 40.0}}}, {"img_ssim", {{"mean", 0.95}}}};
-  b["summary"] = {{"err_mean_px", {{"mean", 1.05}}},   // +5% > 2%: worse
-                  {"err_p95_px", {{"mean", 2.0}}},     // better
-                  {"img_psnr_db", {{"mean", 39.5}}},   // -1.25% within 2%
-                  {"img_ssim", nullptr}};              // unavailable: skipped
+  a["summary"] = {{"err_mean_px", {{"mean", 1.0}}},
+                  {"err_p95_px", {{"mean", 3.0}}},
+                  {"img_psnr_db", {{"mean", 40.0}}},
+                  {"img_ssim", {{"mean", 0.95}}}};
+  b["summary"] = {{"err_mean_px", {{"mean", 1.05}}},  // +5% > 2%: worse
+                  {"err_p95_px", {{"mean", 2.0}}},    // better
+                  {"img_psnr_db", {{"mean", 39.5}}},  // -1.25% within 2%
+                  {"img_ssim", nullptr}};             // unavailable: skipped
   CompareReport r = compareDirs(writeRun("acc_a", runContext(), {a}), writeRun("acc_b", runContext(), {b}));
   const CaseComparison& c = only(r);
   ASSERT_EQ(c.accuracy.size(), 3u);
@@ -205,7 +207,8 @@ TEST(Compare, PoolingConcatenatesRoundsAndKeepsFailures) {
 RunData pooledRounds(const std::string& name, const std::vector<double>& levels) {
   std::vector<RunData> rounds;
   for (size_t i = 0; i < levels.size(); ++i)
-    rounds.push_back(loadRun(writeRun(name + std::to_string(i), runContext(), {caseDoc("x", gpuTimes(30, levels[i]))})));
+    rounds.push_back(
+        loadRun(writeRun(name + std::to_string(i), runContext(), {caseDoc("x", gpuTimes(30, levels[i]))})));
   return poolRuns(rounds);
 }
 
@@ -308,7 +311,17 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   EXPECT_EQ(o.code, 2) << o.text;
   EXPECT_NE(o.text.find(broken + "/run.json: not valid JSON"), std::string::npos) << o.text;
 
-  EXPECT_EQ(runCli("compare " + base).code, 2);                    // candidate missing
+  o = runCli("compare " + base + " " + base + " --json /nonexistent/dir/v.json");
+  EXPECT_EQ(o.code, 2) << o.text;  // not 1: exit 1 means a regression
+  EXPECT_NE(o.text.find("/nonexistent/dir/v.json"), std::string::npos) << o.text;
+
+  auto wrongType = writeRun("cli_type", runContext(), {caseDoc("x", gpuTimes(5, 1))});
+  test::writeText(wrongType + "/cases/y.json", R"({"case_id": "y", "frames": [], "status": 3})");
+  o = runCli("compare " + base + " " + wrongType);
+  EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find(wrongType + "/cases/y.json: "), std::string::npos) << o.text;
+
+  EXPECT_EQ(runCli("compare " + base).code, 2);                              // candidate missing
   EXPECT_EQ(runCli("compare " + base + " " + base + " --alpha 2").code, 2);  // out of range
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }

@@ -1,9 +1,9 @@
 // lodbench compare's statistics: Mann-Whitney U against hand-derived and scipy values, and the
 // bootstrap interval's determinism.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "compare/significance.h"
 #include "metrics/stats.h"

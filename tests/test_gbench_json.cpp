@@ -1,9 +1,9 @@
 // gbench.json pins Google Benchmark's JSON schema (the fields its compare.py reads) on a hand-made
 // run: per-repetition entries, aggregates, counters, and a failed case recorded with its reason.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "error.h"
 #include "sweep/gbench_json.h"
@@ -20,15 +20,15 @@ TEST(GbenchJson, SchemaFieldsRepetitionsAndCounters) {
   // Frames 0..3 twice: repetition 0 has gpu ms 1, 2, 3, 4 (median 2.5), repetition 1 has 5, 6, 7, 8 (6.5).
   json ok = test::caseDoc("uniform-level8", {1, 2, 3, 4, 5, 6, 7, 8});
   for (int i = 0; i < 8; ++i) ok["frames"][i]["frame"] = i % 4;
-  ok["summary"] = {{"gpu_ms", {{"median", 4.5}}}, {"err_mean_px", {{"mean", 0.75}, {"median", 0.5}}},
-                   {"saturated_fraction", 0.25}};
+  ok["summary"] = {
+      {"gpu_ms", {{"median", 4.5}}}, {"err_mean_px", {{"mean", 0.75}, {"median", 0.5}}}, {"saturated_fraction", 0.25}};
   json failed = test::caseDoc("sphere-tri3", {}, "failed");
   std::string dir = test::writeRun("gbench", ctx, {ok, failed});
   json g = googleBenchmarkJson(dir);
 
   const json& c = g["context"];
-  for (const char* key : {"date", "host_name", "executable", "num_cpus", "mhz_per_cpu", "cpu_scaling_enabled",
-                          "caches", "load_avg", "library_build_type", "device", "driver", "git_commit"})
+  for (const char* key : {"date", "host_name", "executable", "num_cpus", "mhz_per_cpu", "cpu_scaling_enabled", "caches",
+                          "load_avg", "library_build_type", "device", "driver", "git_commit"})
     EXPECT_TRUE(c.contains(key)) << key;
   EXPECT_EQ(c["date"], "2026-11-21T20:00:00+00:00");
   EXPECT_EQ(c["host_name"], "testhost");

@@ -14,12 +14,12 @@ struct AbOptions {
   std::string config;               // config file both run
   std::string outDir;               // rounds go to <outDir>/a1, b1, a2, b2, ...
   int rounds = 3;
-  bool progress = true;             // one line per round on stderr
+  bool progress = true;  // one line per round on stderr
 };
 
 struct AbRuns {
-  RunData baseline, candidate;      // pooled over rounds
-  std::vector<std::string> dirs;    // every round's directory, in run order
+  RunData baseline, candidate;    // pooled over rounds
+  std::vector<std::string> dirs;  // every round's directory, in run order
 };
 
 // Throws InputError for a binary that is not an executable file or a missing config, and

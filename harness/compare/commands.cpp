@@ -4,9 +4,23 @@
 #include <cstdio>
 
 #include "compare/verdict.h"
+#include "error.h"
 #include "sweep/results.h"
 
 namespace lb {
+
+// Exit 1 means "regression", so anything else that stops a check (an unwritable verdict path, a
+// round that crashed) must not look like one: it becomes an InputError, exit 2.
+template <typename F>
+static int checked(F&& body) {
+  try {
+    return body();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(e.what());
+  }
+}
 
 static int report(const CompareReport& r, const VerdictFiles& files) {
   std::fputs(verdictMarkdown(r).c_str(), stdout);
@@ -18,10 +32,12 @@ static int report(const CompareReport& r, const VerdictFiles& files) {
 
 int compareCommand(const std::string& baselineDir, const std::vector<std::string>& candidateDirs,
                    const CompareOptions& options, const VerdictFiles& files) {
-  RunData baseline = loadRun(baselineDir);
-  std::vector<RunData> rounds;
-  for (auto& dir : candidateDirs) rounds.push_back(loadRun(dir));
-  return report(compareRuns(baseline, poolRuns(rounds), options), files);
+  return checked([&] {
+    RunData baseline = loadRun(baselineDir);
+    std::vector<RunData> rounds;
+    for (auto& dir : candidateDirs) rounds.push_back(loadRun(dir));
+    return report(compareRuns(baseline, poolRuns(rounds), options), files);
+  });
 }
 
 int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files) {
@@ -33,10 +49,12 @@ int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files) {
   }
   if (files.json.empty()) files.json = ab.outDir + "/compare.json";
   if (files.md.empty()) files.md = ab.outDir + "/compare.md";
-  AbRuns runs = runAb(ab);
-  CompareOptions paired = options;
-  paired.pairedRounds = true;  // round i of A and of B ran one after the other
-  return report(compareRuns(runs.baseline, runs.candidate, paired), files);
+  return checked([&] {
+    AbRuns runs = runAb(ab);
+    CompareOptions paired = options;
+    paired.pairedRounds = true;  // round i of A and of B ran one after the other
+    return report(compareRuns(runs.baseline, runs.candidate, paired), files);
+  });
 }
 
 }  // namespace lb

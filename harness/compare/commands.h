@@ -17,6 +17,7 @@ struct VerdictFiles {
 int compareCommand(const std::string& baselineDir, const std::vector<std::string>& candidateDirs,
                    const CompareOptions& options, const VerdictFiles& files);
 // Runs the rounds, then compares; verdict files default to <out>/compare.{json,md}.
+// Both return 0 or 1 and throw InputError (exit 2) for anything that stops the check.
 int abCommand(AbOptions ab, const CompareOptions& options, VerdictFiles files);
 
 }  // namespace lb

@@ -103,8 +103,8 @@ bool compareExact(const CaseData& b, const CaseData& c, ExactDiff& d) {
                      : std::to_string(m.size()) + " frames (" + std::to_string(m.begin()->first) + ".." +
                            std::to_string(m.rbegin()->first) + ")";
   };
-  bool sameFrames = fb.size() == fc.size() && std::equal(fb.begin(), fb.end(), fc.begin(),
-                                                         [](auto& x, auto& y) { return x.first == y.first; });
+  bool sameFrames = fb.size() == fc.size() &&
+                    std::equal(fb.begin(), fb.end(), fc.begin(), [](auto& x, auto& y) { return x.first == y.first; });
   if (!sameFrames) {
     if (!differs) {
       d.frame = -1;
@@ -206,10 +206,14 @@ std::string fmt(double v) {
 
 const char* timingVerdictName(TimingVerdict v) {
   switch (v) {
-    case TimingVerdict::Unchanged: return "unchanged";
-    case TimingVerdict::Regression: return "regression";
-    case TimingVerdict::Improvement: return "improvement";
-    default: return "not checked";
+    case TimingVerdict::Unchanged:
+      return "unchanged";
+    case TimingVerdict::Regression:
+      return "regression";
+    case TimingVerdict::Improvement:
+      return "improvement";
+    default:
+      return "not checked";
   }
 }
 
@@ -247,8 +251,9 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
     r.notes.push_back("the candidate ran with a planted test slowdown of " + fmt(cand.testSlowdown) +
                       " (run --test-slowdown)");
   for (auto [side, run] : {std::pair{"baseline", &base}, std::pair{"candidate", &cand}})
-    if (run->context.value("validation", false))
-      r.notes.push_back(std::string("the ") + side + " ran with the validation layer on: its timings include its overhead");
+    if (run->context.contains("validation") && run->context["validation"] == true)
+      r.notes.push_back(std::string("the ") + side +
+                        " ran with the validation layer on: its timings include its overhead");
   if (base.testSlowdown > 0)
     r.notes.push_back("the baseline ran with a planted test slowdown of " + fmt(base.testSlowdown));
 
@@ -278,11 +283,10 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
         cc.exactChecked = true;
         cc.exactDiffers = compareExact(b, c, cc.exact);
         if (cc.exactDiffers)
-          cc.regressions.push_back(cc.exact.frame < 0 ? "frame set differs: " + cc.exact.baseline + " vs " +
-                                                            cc.exact.candidate
-                                                      : "exact figures differ: first at frame " +
-                                                            std::to_string(cc.exact.frame) + ", " + cc.exact.field +
-                                                            " " + cc.exact.baseline + " -> " + cc.exact.candidate);
+          cc.regressions.push_back(
+              cc.exact.frame < 0 ? "frame set differs: " + cc.exact.baseline + " vs " + cc.exact.candidate
+                                 : "exact figures differ: first at frame " + std::to_string(cc.exact.frame) + ", " +
+                                       cc.exact.field + " " + cc.exact.baseline + " -> " + cc.exact.candidate);
       }
       compareTiming(b, c, o, cc.timing);
       if (cc.timing.verdict == TimingVerdict::Regression)
@@ -291,8 +295,7 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
       if (cc.timing.verdict == TimingVerdict::Improvement) cc.improved = true;
       compareAccuracy(b, c, o, cc);
       for (auto& a : cc.accuracy)
-        if (a.worse)
-          cc.regressions.push_back(a.metric + " worse: " + fmt(a.baseline) + " -> " + fmt(a.candidate));
+        if (a.worse) cc.regressions.push_back(a.metric + " worse: " + fmt(a.baseline) + " -> " + fmt(a.candidate));
     }
     r.cases.push_back(std::move(cc));
   }

@@ -21,8 +21,8 @@ struct CompareOptions {
 };
 
 struct ExactDiff {
-  int frame = -1;          // first differing frame (path frame index); -1 for a frame-set mismatch
-  std::string field;       // e.g. "clip_invocations", "hist[3]", "frames"
+  int frame = -1;                   // first differing frame (path frame index); -1 for a frame-set mismatch
+  std::string field;                // e.g. "clip_invocations", "hist[3]", "frames"
   std::string baseline, candidate;  // the two values as JSON text
   int framesDiffering = 0;          // frames with any difference
   std::vector<std::string> fields;  // every field that differs somewhere
@@ -32,7 +32,7 @@ enum class TimingVerdict { NotChecked, Unchanged, Regression, Improvement };
 
 struct TimingCheck {
   TimingVerdict verdict = TimingVerdict::NotChecked;
-  std::string reason;       // why not checked
+  std::string reason;                      // why not checked
   double baselineMs = 0, candidateMs = 0;  // medians of the pooled per-frame GPU ms
   double ratio = 0, lo = 0, hi = 0;        // candidate / baseline with its interval
   double p = 1;
@@ -59,7 +59,7 @@ struct CaseComparison {
   bool exactDiffers = false;
   ExactDiff exact;
   TimingCheck timing;
-  std::vector<AccuracyCheck> accuracy;  // only metrics present in both
+  std::vector<AccuracyCheck> accuracy;   // only metrics present in both
   std::vector<std::string> regressions;  // one line per reason this case regressed
   bool improved = false;
 };
@@ -69,11 +69,11 @@ struct CompareReport {
   nlohmann::json baselineContext, candidateContext;
   CompareOptions options;
   bool exactChecked = false;
-  std::string exactSkipReason;            // why exact checks were skipped
+  std::string exactSkipReason;  // why exact checks were skipped
   std::vector<std::string> onlyInBaseline, onlyInCandidate;
-  std::vector<std::string> notes;         // run-level remarks (different devices, planted slowdown)
-  std::vector<CaseComparison> cases;      // matched cases, sorted by id
-  int regressions() const;                // cases with at least one regression
+  std::vector<std::string> notes;     // run-level remarks (different devices, planted slowdown)
+  std::vector<CaseComparison> cases;  // matched cases, sorted by id
+  int regressions() const;            // cases with at least one regression
   int improvements() const;
   int exitCode() const { return regressions() > 0 ? 1 : 0; }
 };

@@ -25,7 +25,7 @@ json readJsonFile(const std::string& file) {
   }
 }
 
-static void addCase(RunData& run, const std::string& file) {
+static void addCase(RunData& run, const std::string& file) try {
   json cj = readJsonFile(file);
   if (!cj.is_object() || !cj.contains("case_id") || !cj["case_id"].is_string())
     throw InputError(file + ": not a lodbench case file (no \"case_id\")");
@@ -46,6 +46,8 @@ static void addCase(RunData& run, const std::string& file) {
   }
   if (run.cases.count(c.id)) throw InputError(file + ": case_id '" + c.id + "' appears in two case files");
   run.cases[c.id] = std::move(c);
+} catch (const json::exception& e) {  // a field of the wrong type: untrusted input, not a bug
+  throw InputError(file + ": " + e.what());
 }
 
 RunData loadRun(const std::string& dir) {

@@ -39,7 +39,9 @@ MannWhitney mannWhitneyU(const std::vector<double>& x, const std::vector<double>
   return r;
 }
 
-double median(std::vector<double> values) { return percentile(std::move(values), 50); }
+double median(std::vector<double> values) {
+  return percentile(std::move(values), 50);
+}
 
 namespace {
 

@@ -36,63 +36,81 @@ json verdictJson(const CompareReport& r) {
   for (auto& c : r.cases) {
     json acc = json::array();
     for (auto& a : c.accuracy)
-      acc.push_back({{"metric", a.metric}, {"baseline", a.baseline}, {"candidate", a.candidate},
-                     {"higher_is_worse", a.higherIsWorse}, {"worse", a.worse}});
+      acc.push_back({{"metric", a.metric},
+                     {"baseline", a.baseline},
+                     {"candidate", a.candidate},
+                     {"higher_is_worse", a.higherIsWorse},
+                     {"worse", a.worse}});
     const TimingCheck& t = c.timing;
-    json timing = {{"verdict", timingVerdictName(t.verdict)}, {"n_baseline", t.nBaseline},
-                   {"n_candidate", t.nCandidate}};
+    json timing = {
+        {"verdict", timingVerdictName(t.verdict)}, {"n_baseline", t.nBaseline}, {"n_candidate", t.nCandidate}};
     if (t.verdict == TimingVerdict::NotChecked) {
       timing["reason"] = t.reason;
     } else {
-      timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio},
-                     {"ci_lo", t.lo}, {"ci_hi", t.hi}, {"p", t.p}});
+      timing.update({{"baseline_ms", t.baselineMs},
+                     {"candidate_ms", t.candidateMs},
+                     {"ratio", t.ratio},
+                     {"ci_lo", t.lo},
+                     {"ci_hi", t.hi},
+                     {"p", t.p}});
       if (t.roundsBaseline)
-        timing.update({{"rounds_baseline", t.roundsBaseline}, {"rounds_candidate", t.roundsCandidate},
-                       {"paired_rounds", t.pairedRounds}, {"round_ratio", t.roundRatio}});
+        timing.update({{"rounds_baseline", t.roundsBaseline},
+                       {"rounds_candidate", t.roundsCandidate},
+                       {"paired_rounds", t.pairedRounds},
+                       {"round_ratio", t.roundRatio}});
     }
     json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
     if (c.exactDiffers)
-      exact.update({{"first_frame", c.exact.frame}, {"field", c.exact.field}, {"baseline", c.exact.baseline},
-                    {"candidate", c.exact.candidate}, {"frames_differing", c.exact.framesDiffering},
+      exact.update({{"first_frame", c.exact.frame},
+                    {"field", c.exact.field},
+                    {"baseline", c.exact.baseline},
+                    {"candidate", c.exact.candidate},
+                    {"frames_differing", c.exact.framesDiffering},
                     {"fields", c.exact.fields}});
-    cases.push_back({{"case_id", c.id}, {"baseline_status", c.baselineStatus}, {"candidate_status", c.candidateStatus},
-                     {"status_note", c.statusNote}, {"regression", !c.regressions.empty()},
-                     {"regressions", c.regressions}, {"improved", c.improved}, {"exact", exact},
-                     {"timing", timing}, {"accuracy", acc}});
+    cases.push_back({{"case_id", c.id},
+                     {"baseline_status", c.baselineStatus},
+                     {"candidate_status", c.candidateStatus},
+                     {"status_note", c.statusNote},
+                     {"regression", !c.regressions.empty()},
+                     {"regressions", c.regressions},
+                     {"improved", c.improved},
+                     {"exact", exact},
+                     {"timing", timing},
+                     {"accuracy", acc}});
   }
-  return {{"schema_version", kVerdictSchemaVersion},
-          {"tool", "lodbench compare"},
-          {"tool_version", LODBENCH_VERSION},
-          {"time", isoTimeUtc()},
-          {"verdict", r.exitCode() ? "regression" : "clean"},
-          {"exit_code", r.exitCode()},
-          {"regressions", r.regressions()},
-          {"improvements", r.improvements()},
-          {"baseline", side(r.baselineDir, r.baselineContext)},
-          {"candidate", side(r.candidateDir, r.candidateContext)},
-          {"options", {{"threshold", r.options.threshold}, {"alpha", r.options.alpha},
-                       {"error_tolerance", r.options.errorTolerance}}},
-          {"timing_method", kTimingMethod},
-          {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
-          {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
-          {"notes", r.notes},
-          {"cases", cases}};
+  return {
+      {"schema_version", kVerdictSchemaVersion},
+      {"tool", "lodbench compare"},
+      {"tool_version", LODBENCH_VERSION},
+      {"time", isoTimeUtc()},
+      {"verdict", r.exitCode() ? "regression" : "clean"},
+      {"exit_code", r.exitCode()},
+      {"regressions", r.regressions()},
+      {"improvements", r.improvements()},
+      {"baseline", side(r.baselineDir, r.baselineContext)},
+      {"candidate", side(r.candidateDir, r.candidateContext)},
+      {"options",
+       {{"threshold", r.options.threshold}, {"alpha", r.options.alpha}, {"error_tolerance", r.options.errorTolerance}}},
+      {"timing_method", kTimingMethod},
+      {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
+      {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
+      {"notes", r.notes},
+      {"cases", cases}};
 }
 
 std::string verdictMarkdown(const CompareReport& r) {
   std::ostringstream m;
   m << "# lodbench compare: "
-    << (r.exitCode() ? "REGRESSION in " + std::to_string(r.regressions()) + " of " + std::to_string(r.cases.size()) +
-                           " cases"
-                     : "no regression (" + std::to_string(r.cases.size()) + " cases)")
+    << (r.exitCode()
+            ? "REGRESSION in " + std::to_string(r.regressions()) + " of " + std::to_string(r.cases.size()) + " cases"
+            : "no regression (" + std::to_string(r.cases.size()) + " cases)")
     << "\n\n";
   for (auto [label, dir, ctx] : {std::tuple{"Baseline", &r.baselineDir, &r.baselineContext},
                                  std::tuple{"Candidate", &r.candidateDir, &r.candidateContext}})
     m << "- " << label << ": `" << *dir << "` (commit " << ctxText(*ctx, "git_commit") << ", "
       << ctxText(*ctx, "device") << ", " << ctxText(*ctx, "driver_info") << ")\n";
   m << "- Regression: p < " << num(r.options.alpha) << " and GPU time ratio > " << num(1 + r.options.threshold)
-    << "; accuracy tolerance " << num(r.options.errorTolerance * 100) << "%; " << r.improvements()
-    << " improved\n";
+    << "; accuracy tolerance " << num(r.options.errorTolerance * 100) << "%; " << r.improvements() << " improved\n";
   for (auto& n : r.notes) m << "- Note: " << n << "\n";
 
   if (r.regressions()) {
@@ -107,9 +125,11 @@ std::string verdictMarkdown(const CompareReport& r) {
   } else {
     int differing = 0;
     for (auto& c : r.cases) differing += c.exactDiffers;
-    if (!differing) m << "Equal in every compared case.\n";
+    if (!differing)
+      m << "Equal in every compared case.\n";
     else {
-      m << "| case | first frame | field | baseline | candidate | frames differing | fields |\n|---|---|---|---|---|---|---|\n";
+      m << "| case | first frame | field | baseline | candidate | frames differing | fields "
+           "|\n|---|---|---|---|---|---|---|\n";
       for (auto& c : r.cases) {
         if (!c.exactDiffers) continue;
         std::string fields;
@@ -122,19 +142,20 @@ std::string verdictMarkdown(const CompareReport& r) {
   }
 
   m << "\n## GPU time (median ms over every timing frame)\n\n"
-    << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100) << "% interval] | p | frames | verdict |\n"
+    << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
+    << "% interval] | p | frames | verdict |\n"
     << "|---|---|---|---|---|---|---|\n";
   for (auto& c : r.cases) {
     const TimingCheck& t = c.timing;
     m << "| `" << c.id << "` | ";
     if (t.verdict == TimingVerdict::NotChecked) {
-      m << "- | - | - | - | " << t.nBaseline << " / " << t.nCandidate << " | not checked: "
-        << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
+      m << "- | - | - | - | " << t.nBaseline << " / " << t.nCandidate
+        << " | not checked: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
       continue;
     }
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
-      << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline
-      << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict);
+      << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline << " / "
+      << t.nCandidate << " | " << timingVerdictName(t.verdict);
     if (t.roundsBaseline)
       m << " (rounds x" << num(t.roundRatio, "%.3f") << ", "
         << (t.pairedRounds ? std::to_string(t.roundsBaseline) + " pairs"
@@ -146,12 +167,12 @@ std::string verdictMarkdown(const CompareReport& r) {
   bool anyAccuracy = false;
   for (auto& c : r.cases) anyAccuracy |= !c.accuracy.empty();
   if (anyAccuracy) {
-    m << "\n## Accuracy (mean over measured frames)\n\n| case | metric | baseline | candidate | |\n|---|---|---|---|---|\n";
+    m << "\n## Accuracy (mean over measured frames)\n\n| case | metric | baseline | candidate | "
+         "|\n|---|---|---|---|---|\n";
     for (auto& c : r.cases)
       for (auto& a : c.accuracy)
         m << "| `" << c.id << "` | " << a.metric << (a.higherIsWorse ? " (lower is better)" : " (higher is better)")
-          << " | " << num(a.baseline) << " | " << num(a.candidate) << " | " << (a.worse ? "**worse**" : "ok")
-          << " |\n";
+          << " | " << num(a.baseline) << " | " << num(a.candidate) << " | " << (a.worse ? "**worse**" : "ok") << " |\n";
   }
 
   if (!r.onlyInBaseline.empty() || !r.onlyInCandidate.empty()) {

@@ -1,8 +1,7 @@
 #pragma once
 // The verdict of lodbench compare as JSON (machine-readable) and Markdown (for people and CI logs).
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "compare/compare.h"
 

@@ -58,8 +58,10 @@ json cpuCaches() {
     long bytes = std::atol(size.c_str());
     if (!size.empty() && size.back() == 'K') bytes *= 1024;
     if (!size.empty() && size.back() == 'M') bytes *= 1024 * 1024;
-    caches.push_back({{"type", readLine(d + "/type")}, {"level", std::atoi(readLine(d + "/level").c_str())},
-                      {"size", bytes}, {"num_sharing", countCpuList(readLine(d + "/shared_cpu_list"))}});
+    caches.push_back({{"type", readLine(d + "/type")},
+                      {"level", std::atoi(readLine(d + "/level").c_str())},
+                      {"size", bytes},
+                      {"num_sharing", countCpuList(readLine(d + "/shared_cpu_list"))}});
   }
   return caches;
 }
@@ -101,8 +103,8 @@ json contextBlock(const std::string& runDir, const json& ctx) {
             {"json_schema_version", 1},
             {"lodbench_schema_version", kSchemaVersion},
             {"run_dir", runDir}};
-  for (const char* key : {"tool_version", "git_commit", "device", "driver", "driver_info", "api_version",
-                          "timestamp_period_ns"})
+  for (const char* key :
+       {"tool_version", "git_commit", "device", "driver", "driver_info", "api_version", "timestamp_period_ns"})
     if (ctx.contains(key)) c[key] = ctx[key];
   return c;
 }
@@ -117,15 +119,19 @@ double medianOf(const json& frames, size_t begin, size_t end, const char* key) {
 // Counters of one repetition (its frames) plus the case's measurement means (from the summary).
 void addCounters(json& entry, const json& frames, size_t begin, size_t end, const json& summary) {
   static const std::pair<const char*, const char*> kFrameCounters[] = {
-      {"triangles", "clip_invocations"}, {"patches", "patches"}, {"tes_invocations", "tes_invocations"},
+      {"triangles", "clip_invocations"},
+      {"patches", "patches"},
+      {"tes_invocations", "tes_invocations"},
       {"fragment_invocations", "fragment_invocations"}};
   for (auto& [name, key] : kFrameCounters) entry[name] = medianOf(frames, begin, end, key);
   double gpu = entry["real_time"].get<double>();
   entry["fps"] = gpu > 0 ? 1000.0 / gpu : 0.0;
   for (auto& [key, v] : summary.items()) {
     if (entry.contains(key) || key == "gpu_ms" || key == "cpu_ms" || key == "frames") continue;
-    if (v.is_object() && v.contains("mean") && v["mean"].is_number()) entry[key] = v["mean"];
-    else if (v.is_number() && key.rfind("fps", 0) != 0) entry[key] = v;
+    if (v.is_object() && v.contains("mean") && v["mean"].is_number())
+      entry[key] = v["mean"];
+    else if (v.is_number() && key.rfind("fps", 0) != 0)
+      entry[key] = v;
   }
 }
 
@@ -151,12 +157,17 @@ json googleBenchmarkJson(const std::string& runDir) {
     std::string id = cj.value("case_id", file.stem().string());
     json frames = cj.value("frames", json::array());
     json summary = cj.value("summary", json::object());
-    json base = {{"name", id}, {"family_index", family++}, {"per_family_instance_index", 0}, {"run_name", id},
-                 {"run_type", "iteration"}, {"threads", 1}, {"time_unit", "ms"}};
+    json base = {{"name", id},       {"family_index", family++}, {"per_family_instance_index", 0},
+                 {"run_name", id},   {"run_type", "iteration"},  {"threads", 1},
+                 {"time_unit", "ms"}};
     if (cj.value("status", "ok") != "ok" || frames.empty()) {
       json e = base;  // recorded with its reason, as Google Benchmark records a skipped run
-      e.update({{"repetitions", 1}, {"repetition_index", 0}, {"iterations", 0}, {"real_time", 0.0},
-                {"cpu_time", 0.0}, {"error_occurred", true},
+      e.update({{"repetitions", 1},
+                {"repetition_index", 0},
+                {"iterations", 0},
+                {"real_time", 0.0},
+                {"cpu_time", 0.0},
+                {"error_occurred", true},
                 {"error_message", cj.value("status", "failed") + ": " + cj.value("reason", "no frames")}});
       benchmarks.push_back(e);
       continue;
@@ -167,8 +178,11 @@ json googleBenchmarkJson(const std::string& runDir) {
     for (int r = 0; r < n; ++r) {
       size_t b = size_t(r) * per, e = b + per;
       json entry = base;
-      entry.update({{"repetitions", n}, {"repetition_index", r}, {"iterations", per},
-                    {"real_time", medianOf(frames, b, e, "gpu_ms")}, {"cpu_time", medianOf(frames, b, e, "cpu_ms")}});
+      entry.update({{"repetitions", n},
+                    {"repetition_index", r},
+                    {"iterations", per},
+                    {"real_time", medianOf(frames, b, e, "gpu_ms")},
+                    {"cpu_time", medianOf(frames, b, e, "cpu_ms")}});
       addCounters(entry, frames, b, e, summary);
       real.push_back(entry["real_time"]);
       cpu.push_back(entry["cpu_time"]);
@@ -181,8 +195,14 @@ json googleBenchmarkJson(const std::string& runDir) {
     for (auto [name, rv, cv] : {std::tuple{"mean", sr.mean, sc.mean}, std::tuple{"median", sr.median, sc.median},
                                 std::tuple{"stddev", sr.stddev * k, sc.stddev * k}}) {
       json a = base;
-      a.update({{"name", id + "_" + name}, {"run_type", "aggregate"}, {"repetitions", n}, {"aggregate_name", name},
-                {"aggregate_unit", "time"}, {"iterations", n}, {"real_time", rv}, {"cpu_time", cv}});
+      a.update({{"name", id + "_" + name},
+                {"run_type", "aggregate"},
+                {"repetitions", n},
+                {"aggregate_name", name},
+                {"aggregate_unit", "time"},
+                {"iterations", n},
+                {"real_time", rv},
+                {"cpu_time", cv}});
       benchmarks.push_back(a);
     }
   }

@@ -6,9 +6,8 @@
 // config repetitions > 1 the frames are split into one entry per repetition plus mean / median /
 // stddev aggregates, as Google Benchmark writes them (compare.py's U test needs >= 2 repetitions).
 // A failed or skipped case is an entry with error_occurred and its reason.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace lb {
 

@@ -78,8 +78,9 @@ void benchWriteCase(benchmark::State& state, int frames) {
     fr.stats.clipInvocations = 100000 + uint64_t(f);
     r.frames.push_back(fr);
   }
-  std::string file = (std::filesystem::temp_directory_path() /
-                      ("lodbench_bench_case_" + std::to_string(::getpid()) + ".json")).string();
+  std::string file =
+      (std::filesystem::temp_directory_path() / ("lodbench_bench_case_" + std::to_string(::getpid()) + ".json"))
+          .string();
   for (auto _ : state) writeFileAtomic(file, caseJson(c, r).dump(1));
   std::filesystem::remove(file);
   state.SetItemsProcessed(state.iterations() * frames);

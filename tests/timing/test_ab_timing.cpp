@@ -1,9 +1,9 @@
 // A/B mode on lavapipe, timed: no false alarm when both sides are the same binary (A/A control),
 // and a planted 20% GPU slowdown is flagged. ctest runs this binary alone (RUN_SERIAL): other
 // tests on the same cores are exactly the noise these tests must not measure.
-#include <cstdio>
-
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "cli_run.h"
 
@@ -38,7 +38,7 @@ TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
   ASSERT_EQ(v["cases"].size(), 2u);
   for (auto& c : v["cases"]) {
     EXPECT_EQ(c["exact"]["differs"], false) << c["case_id"];  // deterministic counters across processes
-    EXPECT_EQ(c["timing"]["n_baseline"], 4 * 60);              // 4 rounds x 30 frames x 2 repetitions
+    EXPECT_EQ(c["timing"]["n_baseline"], 4 * 60);             // 4 rounds x 30 frames x 2 repetitions
     EXPECT_EQ(c["timing"]["rounds_candidate"], 4);
     EXPECT_EQ(c["timing"]["paired_rounds"], true);
   }
@@ -50,8 +50,8 @@ TEST(AbTiming, PlantedSlowdownIsFlagged) {
   std::string out = freshDir("slow"), wrapper = freshDir("slow.sh");
   std::ofstream(wrapper) << "#!/bin/sh\nexec " << LODBENCH_BINARY << " \"$@\" --test-slowdown 0.2\n";
   fs::permissions(wrapper, fs::perms::owner_all);
-  CliOut o = lodbench(std::string("ab --baseline ") + LODBENCH_BINARY + " --candidate " + wrapper + " " +
-                      kTinyConfig + " --rounds 4 --out " + out);
+  CliOut o = lodbench(std::string("ab --baseline ") + LODBENCH_BINARY + " --candidate " + wrapper + " " + kTinyConfig +
+                      " --rounds 4 --out " + out);
   json v = readJson(out + "/compare.json");
   printTimings(v);
   EXPECT_EQ(o.code, 1) << o.text;
