@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
   compare->add_option("baseline", baselineDir, "Baseline run directory, e.g. results/baseline/ci")->required();
   compare->add_option("candidate", candidateDirs, "Candidate run directory; several = rounds of one config, pooled")
       ->required();
-  auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B A B ...) and compare");
+  auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B B A A B ...) and compare");
   AbOptions abo;
   ab->add_option("--baseline", abo.baseline, "lodbench binary A (baseline)")->required();
   ab->add_option("--candidate", abo.candidate, "lodbench binary B (candidate)")->required();

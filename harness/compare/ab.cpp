@@ -54,8 +54,10 @@ AbRuns runAb(const AbOptions& o) {
   std::vector<RunData> a, b;
   AbRuns runs;
   for (int round = 1; round <= o.rounds; ++round)
-    for (int sideIndex = 0; sideIndex < 2; ++sideIndex) {
-      bool isA = sideIndex == 0;
+    for (int slot = 0; slot < 2; ++slot) {
+      // A B, B A, A B, ...: each pair still runs side by side, and neither side always goes
+      // second (which a drift of the machine, or any after-effect of the previous run, would favour).
+      bool isA = (slot == 0) == (round % 2 == 1);
       const std::string& binary = isA ? o.baseline : o.candidate;
       std::string dir = o.outDir + "/" + (isA ? "a" : "b") + std::to_string(round);
       fs::remove_all(dir);  // a fresh run: resuming would skip every case and time nothing

@@ -1,5 +1,5 @@
 #pragma once
-// A/B mode: the same config run by two lodbench binaries, interleaved A B A B ... so that slow
+// A/B mode: the same config run by two lodbench binaries, interleaved A B B A A B ... so that slow
 // drifts of the machine (clock, load, thermal) fall on both sides alike. Each round is a full
 // `run --quiet` into its own directory; the rounds of each side are pooled for compareRuns.
 #include <string>
@@ -12,7 +12,7 @@ namespace lb {
 struct AbOptions {
   std::string baseline, candidate;  // lodbench executables
   std::string config;               // config file both run
-  std::string outDir;               // rounds go to <outDir>/a1, b1, a2, b2, ...
+  std::string outDir;               // rounds go to <outDir>/a1, b1, b2, a2, a3, b3, ...
   int rounds = 3;
   bool progress = true;  // one line per round on stderr
 };

@@ -25,11 +25,12 @@ void printTimings(const json& verdict) {
   }
 }
 
-// A/A control: the same binary on both sides, 4 interleaved rounds, default threshold and alpha.
+// A/A control: the same binary on both sides, 6 interleaved rounds, default threshold and alpha.
+// (A false alarm needs the pooled frames AND most of the 6 round pairs to be >10% slower.)
 TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
   std::string out = freshDir("aa");
   CliOut o = lodbench(std::string("ab --baseline ") + LODBENCH_BINARY + " --candidate " + LODBENCH_BINARY + " " +
-                      kTinyConfig + " --rounds 4 --out " + out);
+                      kTinyConfig + " --rounds 6 --out " + out);
   json v = readJson(out + "/compare.json");
   printTimings(v);
   EXPECT_EQ(o.code, 0) << o.text;
@@ -38,11 +39,11 @@ TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
   ASSERT_EQ(v["cases"].size(), 2u);
   for (auto& c : v["cases"]) {
     EXPECT_EQ(c["exact"]["differs"], false) << c["case_id"];  // deterministic counters across processes
-    EXPECT_EQ(c["timing"]["n_baseline"], 4 * 60);             // 4 rounds x 30 frames x 2 repetitions
-    EXPECT_EQ(c["timing"]["rounds_candidate"], 4);
+    EXPECT_EQ(c["timing"]["n_baseline"], 6 * 60);             // 6 rounds x 30 frames x 2 repetitions
+    EXPECT_EQ(c["timing"]["rounds_candidate"], 6);
     EXPECT_EQ(c["timing"]["paired_rounds"], true);
   }
-  for (const char* d : {"a1", "b1", "a4", "b4", "compare.md"}) EXPECT_TRUE(fs::exists(out + "/" + d)) << d;
+  for (const char* d : {"a1", "b1", "a6", "b6", "compare.md"}) EXPECT_TRUE(fs::exists(out + "/" + d)) << d;
 }
 
 // A planted 20% slowdown (run --test-slowdown 0.2) through a wrapper script as binary B.
