@@ -48,6 +48,11 @@ TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
 
 // A planted 20% slowdown (run --test-slowdown 0.2) through a wrapper script as binary B.
 TEST(AbTiming, PlantedSlowdownIsFlagged) {
+#ifdef __SANITIZE_ADDRESS__
+  // Under ASan every frame carries a large fixed overhead (x3-5 here) that dilutes the planted 20%
+  // below the threshold: a timing claim about the sanitizer build would be about the sanitizer.
+  GTEST_SKIP() << "timings of a sanitizer build are not representative";
+#endif
   std::string out = freshDir("slow"), wrapper = freshDir("slow.sh");
   std::ofstream(wrapper) << "#!/bin/sh\nexec " << LODBENCH_BINARY << " \"$@\" --test-slowdown 0.2\n";
   fs::permissions(wrapper, fs::perms::owner_all);
