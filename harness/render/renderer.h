@@ -33,9 +33,9 @@ struct TriangleHistogram {
 struct RenderSettings {
   int width = 320, height = 180;
   int grid = 32;  // patches per side
-  // Testing only (planted regression): timing frames redraw this fraction of the patches, spread
-  // evenly over the grid, in a second pass after the statistics query and before the closing
-  // timestamp, so GPU time grows by about the fraction while the counters stay exact.
+  // Testing only (planted regression, in [0, 1]): timing frames draw the first fraction of every
+  // eighth of the patches again, after the statistics query ends and before the closing
+  // timestamp, so GPU time grows while the counters stay exact (see record()).
   double testSlowdown = 0;
 };
 
