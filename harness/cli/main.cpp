@@ -1,4 +1,5 @@
-// lodbench: command-line entry point. Subcommands: list, devices, run, render, merge, report.
+// lodbench: command-line entry point. Subcommands: list, devices, run, render, merge, report,
+// compare, ab, gbench.
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "camera/camera_path.h"
+#include "compare/commands.h"
 #include "error.h"
 #include "metrics/cracks.h"
 #include "sweep/measure.h"
@@ -16,6 +18,7 @@
 #include "report/report.h"
 #include "schemes/registry.h"
 #include "sweep/config.h"
+#include "sweep/gbench_json.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -135,6 +138,11 @@ int main(int argc, char** argv) {
   merge->add_option("--out", mergeOut, "Merged run directory")->required();
   merge->add_option("runs", mergeInputs, "Shard run directories")->required();
   merge->add_flag("--force", mergeForce, "Merge runs of different configs, devices or drivers");
+  double testSlowdown = 0;
+  run->add_option("--test-slowdown", testSlowdown,
+                  "Testing only: redraw this fraction of the patches inside the timed region (planted regression)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group("Testing");
 
   auto* render = app.add_subcommand("render", "Render one frame of a camera path to PNG");
   RenderArgs ra;
@@ -170,6 +178,35 @@ int main(int argc, char** argv) {
   report->add_option("--frames", rep.frames, "Frames for the image strips, e.g. 0,240 (default: all with images)")
       ->delimiter(',');
   report->add_flag("--no-html", noHtml, "Write Markdown and chart specs only (do not run report/render.mjs)");
+  // compare / ab / gbench (design section 8): regression checks and Google Benchmark JSON.
+  auto* compare = app.add_subcommand("compare", "Check a candidate run against a baseline; exit 1 on a regression");
+  std::string baselineDir;
+  std::vector<std::string> candidateDirs;
+  compare->add_option("baseline", baselineDir, "Baseline run directory, e.g. results/baseline/ci")->required();
+  compare->add_option("candidate", candidateDirs, "Candidate run directory; several = rounds of one config, pooled")
+      ->required();
+  auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B B A A B ...) and compare");
+  AbOptions abo;
+  ab->add_option("--baseline", abo.baseline, "lodbench binary A (baseline)")->required();
+  ab->add_option("--candidate", abo.candidate, "lodbench binary B (candidate)")->required();
+  ab->add_option("config", abo.config, "Config file both binaries run")->required();
+  ab->add_option("--rounds", abo.rounds, "Runs per binary")->capture_default_str()->check(CLI::Range(1, 1000));
+  ab->add_option("--out", abo.outDir, "Directory for the rounds (default results/ab/<time>)");
+  CompareOptions co;
+  VerdictFiles vf;
+  for (CLI::App* sub : {compare, ab}) {
+    sub->add_option("--threshold", co.threshold, "Timing regression when slower than 1 + threshold (and significant)")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    sub->add_option("--alpha", co.alpha, "Significance level of the Mann-Whitney test")
+        ->capture_default_str()->check(CLI::Range(1e-9, 0.5));
+    sub->add_option("--error-tolerance", co.errorTolerance, "Relative worsening of accuracy metrics allowed")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    sub->add_option("--json", vf.json, "Write the verdict as JSON");
+    sub->add_option("--md", vf.md, "Write the verdict as Markdown");
+  }
+  auto* gbench = app.add_subcommand("gbench", "Write <run-dir>/gbench.json in Google Benchmark's JSON schema");
+  std::string gbenchDir;
+  gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
 
   try {
     app.parse(argc, argv);
@@ -180,6 +217,12 @@ int main(int argc, char** argv) {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
+    if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
+    if (*ab) return abCommand(abo, co, vf);
+    if (*gbench) {
+      std::printf("%s\n", writeGoogleBenchmarkJson(gbenchDir).c_str());
+      return 0;
+    }
     if (*merge) {
       MergeTotals t = mergeRuns(mergeOut, mergeInputs, mergeForce);
       std::printf("%s\n", mergeOut.c_str());
@@ -194,6 +237,7 @@ int main(int argc, char** argv) {
     if (*run) {
       Config config = loadConfig(configFile);
       if (!runDevice.empty()) config.device = runDevice;
+      config.testSlowdown = testSlowdown;
       if (!shard.empty()) parseShard(shard, ro.shardIndex, ro.shardCount);
       if (dryRun) {
         auto cases = shardCases(config, ro.shardIndex, ro.shardCount);

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -107,8 +108,10 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   ri.pDepthAttachment = &da;
 
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, q0 + kQueryTop);
-  vkCmdBeginQuery(cmd, stats_, uint32_t(slotIndex), 0);
   vkCmdBeginRendering(cmd, &ri);
+  // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
+  // planted slowdown below draw after the query ends.
+  vkCmdBeginQuery(cmd, stats_, uint32_t(slotIndex), 0);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
   uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
@@ -123,8 +126,26 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
                        &push);
     vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
   }
-  vkCmdEndRendering(cmd);
   vkCmdEndQuery(cmd, stats_, uint32_t(slotIndex));
+  if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
+    // Planted regression (tests only), after the statistics query and before the closing timestamp:
+    // the first fraction s of each eighth of the patches is drawn again (the share spreads over the
+    // grid), split like the draws above, so GPU time grows by about s while the counters stay exact.
+    const double s = std::min(1.0, settings_.testSlowdown);
+    constexpr uint32_t kBlocks = 8;
+    for (uint32_t b = 0; b < kBlocks; ++b) {
+      uint32_t begin = patchCount_ * b / kBlocks, end = patchCount_ * (b + 1) / kBlocks;
+      uint32_t last = begin + uint32_t(std::floor(end * s) - std::floor(begin * s));  // floor(s * patches) in all
+      for (uint32_t first = begin; first < last; first += patchesPerDraw_) {
+        uint32_t count = std::min(patchesPerDraw_, last - first);
+        DrawPush push{first, {0, 0, 0}};
+        vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof push, &push);
+        vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
+      }
+    }
+  }
+  vkCmdEndRendering(cmd);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps_, q0 + kQueryBottom);
   if (slot.readback) {
     imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

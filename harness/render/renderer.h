@@ -34,6 +34,10 @@ struct TriangleHistogram {
 struct RenderSettings {
   int width = 320, height = 180;
   int grid = 32;  // patches per side
+  // Testing only (planted regression, in [0, 1]): timing frames draw the first fraction of every
+  // eighth of the patches again, after the statistics query ends and before the closing
+  // timestamp, so GPU time grows while the counters stay exact (see record()).
+  double testSlowdown = 0;
 };
 
 struct PipelineStats {

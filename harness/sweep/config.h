@@ -41,6 +41,7 @@ struct Config {
   MeasureSpec measure;     // measurement passes (off unless "measure" is given)
   MatchSpec match;         // matched comparisons (off unless "match" is given)
   nlohmann::json raw;      // the config as written, recorded in results
+  double testSlowdown = 0; // `run --test-slowdown` (tests only, never from JSON): see RenderSettings
 };
 
 struct Case {

@@ -58,7 +58,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
   Heightfield terrain = makeHeightfield(c.terrain);
   CameraPath path = loadCameraPath(c.path);
-  RenderSettings settings{c.width, c.height, config.grid};
+  RenderSettings settings{c.width, c.height, config.grid, config.testSlowdown};
   ParamValues params = c.params;
   if (config.match.on()) {
     MatchResult m = matchParameter(ctx, *scheme, params, terrain, path, config, c);
@@ -238,6 +238,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     run["resumed_at"] = previous.value("resumed_at", json::array());
     run["resumed_at"].push_back(context["time"]);
   }
+  if (config.testSlowdown > 0) run["test_slowdown"] = config.testSlowdown;  // so no one mistakes it for data
   writeFileAtomic(runJson, run.dump(2));
 
   auto cases = shardCases(config, options.shardIndex, options.shardCount);

@@ -1,0 +1,305 @@
+#include "compare/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <utility>
+
+#include "compare/significance.h"
+
+namespace lb {
+
+using nlohmann::json;
+
+const char* const kTimingMethod =
+    "ratio = median(candidate GPU ms) / median(baseline GPU ms) over every timing frame; interval: percentile "
+    "bootstrap (2000 resamples of each side, splitmix64 seed 0x10DBE7C4) at confidence 1 - alpha; p: two-sided "
+    "Mann-Whitney U, normal approximation with tie and continuity correction; with several rounds (A/B mode, or "
+    "several candidate runs) the ratio of the rounds' medians (A/B: median of the per-pair ratios) must pass the "
+    "threshold as well";
+
+namespace {
+
+// Deterministic per-frame figures: equal on the same device and driver, whatever the timing.
+const char* const kCounterFields[] = {"patches", "tes_invocations", "clip_invocations", "clip_primitives",
+                                      "fragment_invocations"};
+
+bool isExactMeasurement(const std::string& key) {
+  return key.rfind("hist", 0) == 0 || key == "cracks_analytic" || key == "cracks_pixels";
+}
+
+struct AccuracyMetric {
+  const char* name;
+  bool higherIsWorse;
+};
+const AccuracyMetric kAccuracyMetrics[] = {
+    {"err_mean_px", true}, {"err_p95_px", true}, {"img_psnr_db", false}, {"img_ssim", false}};
+
+// First record of each frame index (repetitions replay the same frames; their counters are equal).
+std::map<int, const json*> byFrame(const json& frames) {
+  std::map<int, const json*> m;
+  for (auto& f : frames)
+    if (f.contains("frame") && f["frame"].is_number_integer()) m.emplace(f["frame"].get<int>(), &f);
+  return m;
+}
+
+// First differing field of one frame ("" when equal); fills both values.
+std::string firstDifference(const json& b, const json& c, std::string& bv, std::string& cv,
+                            std::vector<std::string>& fields) {
+  std::string first;
+  auto note = [&](const std::string& field, const json& x, const json& y) {
+    if (first.empty()) {
+      first = field;
+      bv = x.dump();
+      cv = y.dump();
+    }
+    std::string name = field.substr(0, field.find('['));
+    if (std::find(fields.begin(), fields.end(), name) == fields.end()) fields.push_back(name);
+  };
+  static const json kAbsent = "absent";
+  for (const char* f : kCounterFields) {
+    const json& x = b.contains(f) ? b[f] : kAbsent;
+    const json& y = c.contains(f) ? c[f] : kAbsent;
+    if (x != y) note(f, x, y);
+  }
+  // Measurement keys only where both records carry them (older runs may predate a metric).
+  for (auto& [key, x] : b.items()) {
+    if (!isExactMeasurement(key) || !c.contains(key)) continue;
+    const json& y = c[key];
+    if (x.is_array() && y.is_array() && x.size() == y.size()) {
+      for (size_t i = 0; i < x.size(); ++i)
+        if (x[i] != y[i]) {
+          note(key + "[" + std::to_string(i) + "]", x[i], y[i]);
+          break;
+        }
+    } else if (x != y) {
+      note(key, x, y);
+    }
+  }
+  return first;
+}
+
+bool compareExact(const CaseData& b, const CaseData& c, ExactDiff& d) {
+  auto fb = byFrame(b.frames), fc = byFrame(c.frames);
+  bool differs = false;
+  for (auto& [frame, rb] : fb) {
+    auto it = fc.find(frame);
+    if (it == fc.end()) continue;
+    std::string bv, cv;
+    std::string field = firstDifference(*rb, *it->second, bv, cv, d.fields);
+    if (field.empty()) continue;
+    if (!differs) {
+      d.frame = frame;
+      d.field = field;
+      d.baseline = bv;
+      d.candidate = cv;
+    }
+    differs = true;
+    d.framesDiffering++;
+  }
+  auto range = [](const std::map<int, const json*>& m) {
+    return m.empty() ? std::string("0 frames")
+                     : std::to_string(m.size()) + " frames (" + std::to_string(m.begin()->first) + ".." +
+                           std::to_string(m.rbegin()->first) + ")";
+  };
+  bool sameFrames = fb.size() == fc.size() &&
+                    std::equal(fb.begin(), fb.end(), fc.begin(), [](auto& x, auto& y) { return x.first == y.first; });
+  if (!sameFrames) {
+    if (!differs) {
+      d.frame = -1;
+      d.field = "frames";
+      d.baseline = range(fb);
+      d.candidate = range(fc);
+    }
+    d.fields.push_back("frames");
+    differs = true;
+  }
+  return differs;
+}
+
+void compareTiming(const CaseData& b, const CaseData& c, const CompareOptions& o, TimingCheck& t) {
+  t.nBaseline = int(b.gpuMs.size());
+  t.nCandidate = int(c.gpuMs.size());
+  if (t.nBaseline < 2 || t.nCandidate < 2) {
+    t.reason = "fewer than 2 timing frames on a side";
+    return;
+  }
+  t.baselineMs = median(b.gpuMs);
+  t.candidateMs = median(c.gpuMs);
+  if (!(t.baselineMs > 0)) {
+    t.reason = "baseline median GPU time is 0 (no timestamps on its device)";
+    return;
+  }
+  RatioInterval ci = bootstrapMedianRatio(b.gpuMs, c.gpuMs, 1.0 - o.alpha);
+  t.ratio = ci.ratio;
+  t.lo = ci.lo;
+  t.hi = ci.hi;
+  t.p = mannWhitneyU(b.gpuMs, c.gpuMs).p;
+  // Frames of one process share its conditions (load, clocks), so one disturbed round can make
+  // pooled frames differ "significantly"; with rounds, the change must also hold round by round:
+  // the median of the per-pair ratios (A/B rounds run side by side), else the ratio of the
+  // medians of the round medians (rounds recorded at different times).
+  const size_t nb = b.roundMedians.size(), nc = c.roundMedians.size();
+  bool slower = t.ratio > 1.0 + o.threshold, faster = t.ratio < 1.0 / (1.0 + o.threshold);
+  if (nb >= 1 && nc >= 1 && std::max(nb, nc) >= 2) {
+    t.roundsBaseline = int(nb);
+    t.roundsCandidate = int(nc);
+    t.pairedRounds = o.pairedRounds && nb == nc;
+    if (t.pairedRounds) {
+      std::vector<double> ratios;
+      for (size_t i = 0; i < nb; ++i) ratios.push_back(c.roundMedians[i] / b.roundMedians[i]);
+      t.roundRatio = median(ratios);
+    } else {
+      t.roundRatio = median(c.roundMedians) / median(b.roundMedians);
+    }
+    slower = slower && t.roundRatio > 1.0 + o.threshold;
+    faster = faster && t.roundRatio < 1.0 / (1.0 + o.threshold);
+  }
+  bool significant = t.p < o.alpha;
+  if (significant && slower)
+    t.verdict = TimingVerdict::Regression;
+  else if (significant && faster)
+    t.verdict = TimingVerdict::Improvement;
+  else
+    t.verdict = TimingVerdict::Unchanged;
+}
+
+// The mean over measured frames from a summary statistics object (or a plain number).
+bool summaryValue(const json& summary, const char* key, double& v) {
+  if (!summary.contains(key)) return false;
+  const json& s = summary[key];
+  if (s.is_object() && s.contains("mean") && s["mean"].is_number()) {
+    v = s["mean"].get<double>();
+    return true;
+  }
+  if (s.is_number()) {
+    v = s.get<double>();
+    return true;
+  }
+  return false;
+}
+
+void compareAccuracy(const CaseData& b, const CaseData& c, const CompareOptions& o, CaseComparison& cc) {
+  for (auto& m : kAccuracyMetrics) {
+    AccuracyCheck a;
+    a.metric = m.name;
+    a.higherIsWorse = m.higherIsWorse;
+    if (!summaryValue(b.summary, m.name, a.baseline) || !summaryValue(c.summary, m.name, a.candidate)) continue;
+    double allowed = o.errorTolerance * std::abs(a.baseline) + 1e-12;
+    a.worse = m.higherIsWorse ? a.candidate > a.baseline + allowed : a.candidate < a.baseline - allowed;
+    cc.accuracy.push_back(a);
+  }
+}
+
+std::string ctxString(const json& ctx, const char* key) {
+  return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : "";
+}
+
+std::string fmt(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", v);
+  return s;
+}
+
+}  // namespace
+
+const char* timingVerdictName(TimingVerdict v) {
+  switch (v) {
+    case TimingVerdict::Unchanged:
+      return "unchanged";
+    case TimingVerdict::Regression:
+      return "regression";
+    case TimingVerdict::Improvement:
+      return "improvement";
+    default:
+      return "not checked";
+  }
+}
+
+int CompareReport::regressions() const {
+  return int(std::count_if(cases.begin(), cases.end(), [](auto& c) { return !c.regressions.empty(); }));
+}
+
+int CompareReport::improvements() const {
+  return int(std::count_if(cases.begin(), cases.end(), [](auto& c) { return c.improved; }));
+}
+
+CompareReport compareRuns(const RunData& base, const RunData& cand, const CompareOptions& o) {
+  CompareReport r;
+  r.baselineDir = base.dir;
+  r.candidateDir = cand.dir;
+  r.baselineContext = base.context;
+  r.candidateContext = cand.context;
+  r.options = o;
+
+  // Counters are deterministic per device and driver build only (design section 5).
+  const char* const identity[] = {"device", "driver", "driver_info"};
+  r.exactChecked = true;
+  for (const char* key : identity) {
+    std::string b = ctxString(base.context, key), c = ctxString(cand.context, key);
+    if (b.empty() || c.empty() || b != c) {
+      r.exactChecked = false;
+      r.exactSkipReason = std::string("context.") + key + " differs: '" + b + "' (baseline) vs '" + c +
+                          "' (candidate); counters are only comparable on the same device and driver";
+      break;
+    }
+  }
+  if (ctxString(base.context, "device") != ctxString(cand.context, "device"))
+    r.notes.push_back("timings come from different devices: ratios compare devices, not code");
+  if (cand.testSlowdown > 0)
+    r.notes.push_back("the candidate ran with a planted test slowdown of " + fmt(cand.testSlowdown) +
+                      " (run --test-slowdown)");
+  for (auto [side, run] : {std::pair{"baseline", &base}, std::pair{"candidate", &cand}})
+    if (run->context.contains("validation") && run->context["validation"] == true)
+      r.notes.push_back(std::string("the ") + side +
+                        " ran with the validation layer on: its timings include its overhead");
+  if (base.testSlowdown > 0)
+    r.notes.push_back("the baseline ran with a planted test slowdown of " + fmt(base.testSlowdown));
+
+  for (auto& [id, b] : base.cases)
+    if (!cand.cases.count(id)) r.onlyInBaseline.push_back(id);
+  for (auto& [id, c] : cand.cases)
+    if (!base.cases.count(id)) r.onlyInCandidate.push_back(id);
+
+  for (auto& [id, b] : base.cases) {
+    auto it = cand.cases.find(id);
+    if (it == cand.cases.end()) continue;
+    const CaseData& c = it->second;
+    CaseComparison cc;
+    cc.id = id;
+    cc.baselineStatus = b.status;
+    cc.candidateStatus = c.status;
+    if (b.status == "ok" && c.status != "ok") {
+      cc.regressions.push_back("case " + c.status + " in the candidate: " + c.reason);
+    } else if (b.status != "ok" && c.status == "ok") {
+      cc.improved = true;
+      cc.statusNote = "was " + b.status + " in the baseline, ok now";
+    } else if (b.status != "ok") {
+      cc.statusNote = "not ok on either side (" + b.status + " / " + c.status + "): not compared";
+    }
+    if (b.status == "ok" && c.status == "ok") {
+      if (r.exactChecked) {
+        cc.exactChecked = true;
+        cc.exactDiffers = compareExact(b, c, cc.exact);
+        if (cc.exactDiffers)
+          cc.regressions.push_back(
+              cc.exact.frame < 0 ? "frame set differs: " + cc.exact.baseline + " vs " + cc.exact.candidate
+                                 : "exact figures differ: first at frame " + std::to_string(cc.exact.frame) + ", " +
+                                       cc.exact.field + " " + cc.exact.baseline + " -> " + cc.exact.candidate);
+      }
+      compareTiming(b, c, o, cc.timing);
+      if (cc.timing.verdict == TimingVerdict::Regression)
+        cc.regressions.push_back("GPU time x" + fmt(cc.timing.ratio) + " [" + fmt(cc.timing.lo) + ", " +
+                                 fmt(cc.timing.hi) + "], p = " + fmt(cc.timing.p));
+      if (cc.timing.verdict == TimingVerdict::Improvement) cc.improved = true;
+      compareAccuracy(b, c, o, cc);
+      for (auto& a : cc.accuracy)
+        if (a.worse) cc.regressions.push_back(a.metric + " worse: " + fmt(a.baseline) + " -> " + fmt(a.candidate));
+    }
+    r.cases.push_back(std::move(cc));
+  }
+  return r;
+}
+
+}  // namespace lb

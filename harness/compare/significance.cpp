@@ -1,0 +1,102 @@
+#include "compare/significance.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstddef>
+
+#include "metrics/stats.h"
+
+namespace lb {
+
+MannWhitney mannWhitneyU(const std::vector<double>& x, const std::vector<double>& y) {
+  MannWhitney r;
+  const double n1 = double(x.size()), n2 = double(y.size()), n = n1 + n2;
+  if (x.empty() || y.empty()) return r;
+  // Rank the pooled sample, tied values sharing their mean rank.
+  std::vector<std::pair<double, bool>> all;  // value, from x
+  all.reserve(x.size() + y.size());
+  for (double v : x) all.push_back({v, true});
+  for (double v : y) all.push_back({v, false});
+  std::sort(all.begin(), all.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  double rankSumX = 0, tieTerm = 0;  // tieTerm: sum over tie groups of t^3 - t
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    while (j < all.size() && all[j].first == all[i].first) ++j;
+    const double t = double(j - i), meanRank = (double(i + 1) + double(j)) / 2.0;
+    for (size_t k = i; k < j; ++k)
+      if (all[k].second) rankSumX += meanRank;
+    tieTerm += t * t * t - t;
+    i = j;
+  }
+  r.u = rankSumX - n1 * (n1 + 1) / 2.0;
+  const double u = std::max(r.u, n1 * n2 - r.u);  // two-sided: the larger U, as scipy does
+  const double mu = n1 * n2 / 2.0;
+  const double var = n1 * n2 / 12.0 * ((n + 1) - tieTerm / (n * (n - 1)));
+  if (!(var > 0)) return r;  // every value tied: no evidence either way
+  r.z = (u - mu - 0.5) / std::sqrt(var);
+  r.p = std::min(1.0, std::erfc(r.z / std::sqrt(2.0)));  // 2 * normal survival function
+  return r;
+}
+
+double median(std::vector<double> values) {
+  return percentile(std::move(values), 50);
+}
+
+namespace {
+
+// splitmix64 (Steele, Lea, Flood 2014): fully specified, unlike std::uniform_int_distribution,
+// whose output differs between standard libraries.
+struct SplitMix64 {
+  uint64_t state;
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  // Modulo bias for n of a few thousand samples is below 1e-15: irrelevant here.
+  size_t below(size_t n) { return size_t(next() % n); }
+};
+
+// Median by selection rather than a full sort (the bootstrap takes thousands); the same value as
+// percentile(v, 50), whose midpoint is hi - (hi - lo) * 0.5.
+double medianInPlace(std::vector<double>& v) {
+  const size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(mid), v.end());
+  const double hi = v[mid];
+  if (v.size() % 2) return hi;
+  const double lo = *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(mid));
+  return hi - (hi - lo) * 0.5;
+}
+
+double resampledMedian(const std::vector<double>& v, SplitMix64& rng, std::vector<double>& scratch) {
+  scratch.resize(v.size());
+  for (double& s : scratch) s = v[rng.below(v.size())];
+  return medianInPlace(scratch);
+}
+
+}  // namespace
+
+RatioInterval bootstrapMedianRatio(const std::vector<double>& baseline, const std::vector<double>& candidate,
+                                   double confidence, int resamples, uint64_t seed) {
+  assert(!baseline.empty() && !candidate.empty() && resamples > 0);
+  RatioInterval r;
+  const double mb = median(baseline);
+  assert(mb > 0);
+  r.ratio = median(candidate) / mb;
+  SplitMix64 rng{seed};
+  std::vector<double> ratios, scratch;
+  ratios.reserve(size_t(resamples));
+  for (int i = 0; i < resamples; ++i) {
+    const double b = resampledMedian(baseline, rng, scratch);
+    const double c = resampledMedian(candidate, rng, scratch);
+    if (b > 0) ratios.push_back(c / b);
+  }
+  const double tail = (1.0 - confidence) / 2.0 * 100.0;
+  r.lo = percentile(ratios, tail);
+  r.hi = percentile(ratios, 100.0 - tail);
+  return r;
+}
+
+}  // namespace lb

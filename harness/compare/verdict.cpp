@@ -1,0 +1,192 @@
+#include "compare/verdict.h"
+
+#include <cstdio>
+#include <sstream>
+#include <tuple>
+
+#include "sweep/results.h"
+
+namespace lb {
+
+using nlohmann::json;
+
+namespace {
+
+json side(const std::string& dir, const json& ctx) {
+  json s = {{"dir", dir}};
+  for (const char* key : {"git_commit", "device", "driver", "driver_info", "time", "host"})
+    if (ctx.contains(key)) s[key] = ctx[key];
+  return s;
+}
+
+std::string num(double v, const char* f = "%.4g") {
+  char s[32];
+  std::snprintf(s, sizeof s, f, v);
+  return s;
+}
+
+std::string ctxText(const json& ctx, const char* key) {
+  return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : "?";
+}
+
+}  // namespace
+
+json verdictJson(const CompareReport& r) {
+  json cases = json::array();
+  for (auto& c : r.cases) {
+    json acc = json::array();
+    for (auto& a : c.accuracy)
+      acc.push_back({{"metric", a.metric},
+                     {"baseline", a.baseline},
+                     {"candidate", a.candidate},
+                     {"higher_is_worse", a.higherIsWorse},
+                     {"worse", a.worse}});
+    const TimingCheck& t = c.timing;
+    json timing = {
+        {"verdict", timingVerdictName(t.verdict)}, {"n_baseline", t.nBaseline}, {"n_candidate", t.nCandidate}};
+    if (t.verdict == TimingVerdict::NotChecked) {
+      timing["reason"] = t.reason;
+    } else {
+      timing.update({{"baseline_ms", t.baselineMs},
+                     {"candidate_ms", t.candidateMs},
+                     {"ratio", t.ratio},
+                     {"ci_lo", t.lo},
+                     {"ci_hi", t.hi},
+                     {"p", t.p}});
+      if (t.roundsBaseline)
+        timing.update({{"rounds_baseline", t.roundsBaseline},
+                       {"rounds_candidate", t.roundsCandidate},
+                       {"paired_rounds", t.pairedRounds},
+                       {"round_ratio", t.roundRatio}});
+    }
+    json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
+    if (c.exactDiffers)
+      exact.update({{"first_frame", c.exact.frame},
+                    {"field", c.exact.field},
+                    {"baseline", c.exact.baseline},
+                    {"candidate", c.exact.candidate},
+                    {"frames_differing", c.exact.framesDiffering},
+                    {"fields", c.exact.fields}});
+    cases.push_back({{"case_id", c.id},
+                     {"baseline_status", c.baselineStatus},
+                     {"candidate_status", c.candidateStatus},
+                     {"status_note", c.statusNote},
+                     {"regression", !c.regressions.empty()},
+                     {"regressions", c.regressions},
+                     {"improved", c.improved},
+                     {"exact", exact},
+                     {"timing", timing},
+                     {"accuracy", acc}});
+  }
+  return {
+      {"schema_version", kVerdictSchemaVersion},
+      {"tool", "lodbench compare"},
+      {"tool_version", LODBENCH_VERSION},
+      {"time", isoTimeUtc()},
+      {"verdict", r.exitCode() ? "regression" : "clean"},
+      {"exit_code", r.exitCode()},
+      {"regressions", r.regressions()},
+      {"improvements", r.improvements()},
+      {"baseline", side(r.baselineDir, r.baselineContext)},
+      {"candidate", side(r.candidateDir, r.candidateContext)},
+      {"options",
+       {{"threshold", r.options.threshold}, {"alpha", r.options.alpha}, {"error_tolerance", r.options.errorTolerance}}},
+      {"timing_method", kTimingMethod},
+      {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
+      {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
+      {"notes", r.notes},
+      {"cases", cases}};
+}
+
+std::string verdictMarkdown(const CompareReport& r) {
+  std::ostringstream m;
+  m << "# lodbench compare: "
+    << (r.exitCode()
+            ? "REGRESSION in " + std::to_string(r.regressions()) + " of " + std::to_string(r.cases.size()) + " cases"
+            : "no regression (" + std::to_string(r.cases.size()) + " cases)")
+    << "\n\n";
+  for (auto [label, dir, ctx] : {std::tuple{"Baseline", &r.baselineDir, &r.baselineContext},
+                                 std::tuple{"Candidate", &r.candidateDir, &r.candidateContext}})
+    m << "- " << label << ": `" << *dir << "` (commit " << ctxText(*ctx, "git_commit") << ", "
+      << ctxText(*ctx, "device") << ", " << ctxText(*ctx, "driver_info") << ")\n";
+  m << "- Regression: p < " << num(r.options.alpha) << " and GPU time ratio > " << num(1 + r.options.threshold)
+    << "; accuracy tolerance " << num(r.options.errorTolerance * 100) << "%; " << r.improvements() << " improved\n";
+  for (auto& n : r.notes) m << "- Note: " << n << "\n";
+
+  if (r.regressions()) {
+    m << "\n## Regressions\n\n";
+    for (auto& c : r.cases)
+      for (auto& why : c.regressions) m << "- `" << c.id << "`: " << why << "\n";
+  }
+
+  m << "\n## Exact figures (counters, histograms, cracks)\n\n";
+  if (!r.exactChecked) {
+    m << "Skipped: " << r.exactSkipReason << ".\n";
+  } else {
+    int differing = 0;
+    for (auto& c : r.cases) differing += c.exactDiffers;
+    if (!differing)
+      m << "Equal in every compared case.\n";
+    else {
+      m << "| case | first frame | field | baseline | candidate | frames differing | fields "
+           "|\n|---|---|---|---|---|---|---|\n";
+      for (auto& c : r.cases) {
+        if (!c.exactDiffers) continue;
+        std::string fields;
+        for (auto& f : c.exact.fields) fields += (fields.empty() ? "" : ", ") + f;
+        m << "| `" << c.id << "` | " << (c.exact.frame < 0 ? "-" : std::to_string(c.exact.frame)) << " | "
+          << c.exact.field << " | " << c.exact.baseline << " | " << c.exact.candidate << " | "
+          << c.exact.framesDiffering << " | " << fields << " |\n";
+      }
+    }
+  }
+
+  m << "\n## GPU time (median ms over every timing frame)\n\n"
+    << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
+    << "% interval] | p | frames | verdict |\n"
+    << "|---|---|---|---|---|---|---|\n";
+  for (auto& c : r.cases) {
+    const TimingCheck& t = c.timing;
+    m << "| `" << c.id << "` | ";
+    if (t.verdict == TimingVerdict::NotChecked) {
+      m << "- | - | - | - | " << t.nBaseline << " / " << t.nCandidate
+        << " | not checked: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
+      continue;
+    }
+    m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
+      << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline << " / "
+      << t.nCandidate << " | " << timingVerdictName(t.verdict);
+    if (t.roundsBaseline)
+      m << " (rounds x" << num(t.roundRatio, "%.3f") << ", "
+        << (t.pairedRounds ? std::to_string(t.roundsBaseline) + " pairs"
+                           : std::to_string(t.roundsBaseline) + " vs " + std::to_string(t.roundsCandidate) + " rounds")
+        << ")";
+    m << " |\n";
+  }
+
+  bool anyAccuracy = false;
+  for (auto& c : r.cases) anyAccuracy |= !c.accuracy.empty();
+  if (anyAccuracy) {
+    m << "\n## Accuracy (mean over measured frames)\n\n| case | metric | baseline | candidate | "
+         "|\n|---|---|---|---|---|\n";
+    for (auto& c : r.cases)
+      for (auto& a : c.accuracy)
+        m << "| `" << c.id << "` | " << a.metric << (a.higherIsWorse ? " (lower is better)" : " (higher is better)")
+          << " | " << num(a.baseline) << " | " << num(a.candidate) << " | " << (a.worse ? "**worse**" : "ok") << " |\n";
+  }
+
+  if (!r.onlyInBaseline.empty() || !r.onlyInCandidate.empty()) {
+    m << "\n## Unmatched cases (not compared)\n\n";
+    for (auto& id : r.onlyInBaseline) m << "- only in the baseline: `" << id << "`\n";
+    for (auto& id : r.onlyInCandidate) m << "- only in the candidate: `" << id << "`\n";
+  }
+  m << "\nMethod: " << kTimingMethod << ".\n";
+  return m.str();
+}
+
+void writeVerdict(const CompareReport& r, const std::string& jsonPath, const std::string& mdPath) {
+  if (!jsonPath.empty()) writeFileAtomic(jsonPath, verdictJson(r).dump(2) + "\n");
+  if (!mdPath.empty()) writeFileAtomic(mdPath, verdictMarkdown(r));
+}
+
+}  // namespace lb

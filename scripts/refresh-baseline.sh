@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Re-records the CI baseline results/baseline/ci on purpose: after an intended change of counters
+# or timings, a scheme added to configs/ci.json, or a new Mesa/lavapipe. Run it from a clean,
+# committed tree (the baseline records the git commit), then review and commit:
+#   bash scripts/refresh-baseline.sh && git add results/baseline/ci && git commit -m "baseline: <why>"
+# Env: LODBENCH (binary, default build/lodbench).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${LODBENCH:-build/lodbench}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$bin" run configs/ci.json --out "$tmp/ci" --quiet >/dev/null
+"$bin" gbench "$tmp/ci" >/dev/null
+rm -rf "$tmp/ci/images"  # the CI config renders none; git keeps no empty directory anyway
+"$bin" compare "$tmp/ci" "$tmp/ci" >/dev/null  # reads back cleanly (exit 0) before it replaces anything
+rm -rf results/baseline/ci
+mkdir -p results/baseline
+mv "$tmp/ci" results/baseline/ci
+echo "lodbench: new baseline results/baseline/ci ($(du -sh results/baseline/ci | cut -f1)) from commit $(git rev-parse --short HEAD)"

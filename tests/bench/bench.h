@@ -1,0 +1,24 @@
+#pragma once
+// Microbenchmarks of lodbench's CPU-side work (Google Benchmark). bench_main.cpp registers every
+// function below from one table, and BM_SchemeUpdate once per entry of the scheme registry.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+namespace lb {
+
+class Scheme;
+
+void benchSchemeUpdate(benchmark::State& state, const Scheme& scheme);   // Scheme::update, default params
+void benchDensityMap(benchmark::State& state, int size);                 // densityMap over a size^2 terrain
+void benchPlaneFit(benchmark::State& state, int size, bool book);        // fitPlanes (book or least squares)
+void benchSamplePose(benchmark::State& state, const std::string& path);  // samplePose over every frame
+void benchSummarize(benchmark::State& state, int n);                     // summarize() of n frame times
+void benchPercentile(benchmark::State& state, int n);                    // percentile() of n frame times
+void benchCompareImages(benchmark::State& state, int width, int height);
+void benchSsim(benchmark::State& state, int width, int height);
+void benchWriteCase(benchmark::State& state, int frames);  // caseJson + writeFileAtomic
+void benchMannWhitney(benchmark::State& state, int n);     // lodbench compare's test, n per side
+void benchBootstrap(benchmark::State& state, int n);       // its ratio interval, n per side
+
+}  // namespace lb

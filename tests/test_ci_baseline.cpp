@@ -1,0 +1,39 @@
+// configs/ci.json covers every registered scheme, and the committed baseline matches it case for
+// case (so adding a scheme fails here until scripts/refresh-baseline.sh records it).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "compare/run_data.h"
+#include "schemes/registry.h"
+#include "sweep/config.h"
+
+namespace lb {
+namespace {
+
+const std::string kSrc = LODBENCH_SOURCE_DIR;
+
+TEST(CiBaseline, ConfigCoversEverySchemeInTheRegistry) {
+  Config c = loadConfig(kSrc + "/configs/ci.json");
+  std::set<std::string> inConfig, registered;
+  for (auto& s : c.schemes) inConfig.insert(s.name);
+  for (const Scheme* s : allSchemes()) registered.insert(s->info().name);
+  EXPECT_EQ(inConfig, registered) << "add the new scheme to configs/ci.json and run scripts/refresh-baseline.sh";
+}
+
+TEST(CiBaseline, BaselineHasEveryCaseOfTheConfig) {
+  Config c = loadConfig(kSrc + "/configs/ci.json");
+  RunData base = loadRun(kSrc + "/results/baseline/ci");
+  std::set<std::string> expected, recorded;
+  for (auto& k : expandCases(c)) expected.insert(k.id);
+  for (auto& [id, data] : base.cases) {
+    recorded.insert(id);
+    EXPECT_EQ(data.status, "ok") << id << ": " << data.reason;
+  }
+  EXPECT_EQ(recorded, expected) << "configs/ci.json changed: run scripts/refresh-baseline.sh";
+  EXPECT_EQ(base.context["tool"], "lodbench");
+}
+
+}  // namespace
+}  // namespace lb
