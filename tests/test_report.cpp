@@ -94,7 +94,7 @@ TEST(ReportPareto, FrontKeepsExactlyTheUndominatedPoints) {
 }
 
 TEST(ReportRun, LoadsFixtureInConfigOrderWithImages) {
-  RunData run = loadRun(kFixture.string());
+  ReportRun run = loadReportRun(kFixture.string());
   json summary = readJson(kFixture / "summary.json");
   ASSERT_EQ(run.cases.size(), summary["cases"].size());
   EXPECT_EQ(run.name, "report_fixture");
@@ -111,7 +111,7 @@ TEST(ReportRun, LoadsFixtureInConfigOrderWithImages) {
   EXPECT_EQ(indexed, pngs);
   EXPECT_EQ(run.images.at("phong-tri_size4_proc129s1_lowalt_96x54").at(6).at("shaded"),
             "images/phong-tri_size4_proc129s1_lowalt_96x54_f6_shaded.png");
-  EXPECT_THROW(loadRun((kFixture / "cases").string()), InputError);
+  EXPECT_THROW(loadReportRun((kFixture / "cases").string()), InputError);
 }
 
 TEST(ReportWrite, MarkdownHasContextStabilityProblemsAndEveryCase) {

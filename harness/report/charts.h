@@ -26,16 +26,16 @@ constexpr const char* kVegaLiteSchema = "https://vega.github.io/schema/vega-lite
 std::vector<std::string> histogramBinLabels();
 
 // GPU ms and triangles vs mean and p95 screen-space error, with each scheme's Pareto front.
-std::vector<Chart> speedCharts(const RunData& run);
+std::vector<Chart> speedCharts(const ReportRun& run);
 // Triangle-size histograms (share of on-screen triangles per area bin), per scheme and path.
-Chart histogramChart(const RunData& run);
+Chart histogramChart(const ReportRun& run);
 // Per-frame GPU ms, triangles and error along each path.
-std::vector<Chart> timelineCharts(const RunData& run);
+std::vector<Chart> timelineCharts(const ReportRun& run);
 
 // Schemes with at least one finished case: the colour domain, the same in every chart.
-std::vector<std::string> chartSchemes(const RunData& run);
+std::vector<std::string> chartSchemes(const ReportRun& run);
 // Shared encodings: scheme colours fixed by the run's scheme order, so every chart agrees.
-nlohmann::json schemeColor(const RunData& run);
+nlohmann::json schemeColor(const ReportRun& run);
 // "log" when the positive values span more than a factor kLogSpan, else "linear".
 std::string scaleTypeFor(const std::vector<double>& values);
 // A cost axis' scale: log, or linear without forcing zero in (costs sit far from zero).

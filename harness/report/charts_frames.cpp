@@ -30,7 +30,7 @@ std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"
   return exponent < 0 ? "1/" + std::to_string(1 << -exponent) : std::to_string(1 << exponent);
 }
 
-json facetByScenario(const RunData& run) {
+json facetByScenario(const ReportRun& run) {
   return {{"field", "scenario"},
           {"type", "nominal"},
           {"title", "camera path"},
@@ -38,7 +38,7 @@ json facetByScenario(const RunData& run) {
           {"header", {{"labelFontSize", 13}}}};
 }
 
-json timelineSpec(const RunData& run, const Series& s, const std::string& yScale) {
+json timelineSpec(const ReportRun& run, const Series& s, const std::string& yScale) {
   json x = {{"field", "frame"},
             {"type", "quantitative"},
             {"title", "frame"},
@@ -82,7 +82,7 @@ std::vector<std::string> histogramBinLabels() {
   return labels;
 }
 
-Chart histogramChart(const RunData& run) {
+Chart histogramChart(const ReportRun& run) {
   Chart chart;
   chart.id = chart.dataName = "triangle_sizes";
   chart.section = "histogram";
@@ -161,7 +161,7 @@ Chart histogramChart(const RunData& run) {
   return chart;
 }
 
-std::vector<Chart> timelineCharts(const RunData& run) {
+std::vector<Chart> timelineCharts(const ReportRun& run) {
   json rows = json::array();
   for (auto& c : run.cases) {
     if (c.status != "ok") continue;

@@ -36,7 +36,7 @@ constexpr Cost kCosts[] = {
      "\u2199 better (fewer triangles, more accurate)"},
 };
 
-json speedSpec(const RunData& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
+json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
   json x = {{"field", "err_px"},
             {"type", "quantitative"},
             {"title", "screen-space error (px, mean over measured frames)"},
@@ -90,7 +90,7 @@ json speedSpec(const RunData& run, const Cost& cost, const std::string& yScale, 
 
 }  // namespace
 
-std::vector<std::string> chartSchemes(const RunData& run) {
+std::vector<std::string> chartSchemes(const ReportRun& run) {
   std::vector<std::string> out;
   for (auto& s : run.schemes)
     if (std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return c.scheme == s && c.status == "ok"; }))
@@ -98,7 +98,7 @@ std::vector<std::string> chartSchemes(const RunData& run) {
   return out;
 }
 
-json schemeColor(const RunData& run) {
+json schemeColor(const ReportRun& run) {
   return {{"field", "scheme"},
           {"type", "nominal"},
           {"title", "scheme"},
@@ -119,7 +119,7 @@ std::string scaleTypeFor(const std::vector<double>& values) {
   return !values.empty() && hi / lo > kLogSpan ? "log" : "linear";
 }
 
-std::vector<Chart> speedCharts(const RunData& run) {
+std::vector<Chart> speedCharts(const ReportRun& run) {
   std::vector<Chart> charts;
   for (const Cost& cost : kCosts) {
     Chart chart;

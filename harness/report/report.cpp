@@ -50,7 +50,7 @@ std::string runHrefFrom(const fs::path& out, const std::string& runDir) {
 }  // namespace
 
 ReportOutput writeReport(const ReportOptions& options) {
-  RunData run = loadRun(options.runDir);
+  ReportRun run = loadReportRun(options.runDir);
   fs::path out = options.outDir.empty() ? fs::path(options.runDir) / "report" : fs::path(options.outDir);
   fs::create_directories(out / "charts");
   fs::create_directories(out / "data");

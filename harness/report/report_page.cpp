@@ -96,7 +96,7 @@ void stripSection(Writer& w, const std::vector<Strip>& strips, const std::string
 
 }  // namespace
 
-std::vector<Strip> imageStrips(const RunData& run, const std::vector<int>& frames, std::vector<std::string>& notes) {
+std::vector<Strip> imageStrips(const ReportRun& run, const std::vector<int>& frames, std::vector<std::string>& notes) {
   std::vector<Strip> strips;
   std::set<int> shown;
   for (auto& c : run.cases) {
@@ -125,7 +125,7 @@ std::vector<Strip> imageStrips(const RunData& run, const std::vector<int>& frame
   return strips;
 }
 
-Page buildPage(const RunData& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
+Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
                const std::string& runHref, const std::vector<std::string>& notes) {
   Writer w;
   w.raw("# lodbench report: " + run.name + "\n\n", "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");

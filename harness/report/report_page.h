@@ -18,14 +18,14 @@ struct Strip {
 };
 
 // Strips for the chosen frames (empty: every frame with images) plus each case's worst frames.
-std::vector<Strip> imageStrips(const RunData& run, const std::vector<int>& frames, std::vector<std::string>& notes);
+std::vector<Strip> imageStrips(const ReportRun& run, const std::vector<int>& frames, std::vector<std::string>& notes);
 
 struct Page {
   std::string markdown, html;
 };
 
 // runHref: the run directory relative to the report directory (links to images in Markdown).
-Page buildPage(const RunData& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
+Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
                const std::string& runHref, const std::vector<std::string>& notes);
 
 }  // namespace lb

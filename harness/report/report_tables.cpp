@@ -71,7 +71,7 @@ const Worst kWorst[] = {{"cracks_pixels", "cracks", {"cracks", "shaded", "wirefr
                         {"pop_mean", "popping", {"shaded", "heatmap"}},
                         {"err_p95_px", "error", {"error", "heatmap", "shaded"}}};
 
-Cell worstCell(const RunData& run, const std::vector<const ReportCase*>& cases, const std::string& runHref) {
+Cell worstCell(const ReportRun& run, const std::vector<const ReportCase*>& cases, const std::string& runHref) {
   std::vector<Cell> parts;
   for (const Worst& w : kWorst) {
     auto [value, c] = maxOver(cases, w.key, "max");
@@ -128,7 +128,7 @@ std::string worstOf(const ReportCase& c, int frame) {
   return s;
 }
 
-Table contextTable(const RunData& run) {
+Table contextTable(const ReportRun& run) {
   const json& x = run.context;
   const json totals = run.run.value("totals", json::object());
   Table t{{"item", "value"}, {}, {}};
@@ -148,7 +148,7 @@ Table contextTable(const RunData& run) {
   return t;
 }
 
-Table caseTable(const RunData& run, std::vector<std::string>& omitted) {
+Table caseTable(const ReportRun& run, std::vector<std::string>& omitted) {
   std::vector<const Column*> cols;
   for (const Column& col : kCaseColumns) {
     bool any =
@@ -172,7 +172,7 @@ Table caseTable(const RunData& run, std::vector<std::string>& omitted) {
   return t;
 }
 
-Table stabilityTable(const RunData& run, const std::string& runHref) {
+Table stabilityTable(const ReportRun& run, const std::string& runHref) {
   Table t{{"scheme", "path", "cases ok / failed / skipped", "cracks: edges (max)", "cracks: pixels (max)",
            "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "worst frames"},
           {},
@@ -202,7 +202,7 @@ Table stabilityTable(const RunData& run, const std::string& runHref) {
   return t;
 }
 
-Table problemTable(const RunData& run) {
+Table problemTable(const ReportRun& run) {
   Table t{{"case", "scheme", "parameters", "path", "status", "reason"}, {}, {}};
   for (auto& c : run.cases)
     if (c.status != "ok")

@@ -11,11 +11,11 @@ namespace lb {
 
 // runHref: the run directory as seen from the report directory ("..", or a relative path when
 // --out puts the report elsewhere); Markdown links to images go through it.
-Table contextTable(const RunData& run);
+Table contextTable(const ReportRun& run);
 // omitted receives the columns no case has (left out of the table).
-Table caseTable(const RunData& run, std::vector<std::string>& omitted);
-Table stabilityTable(const RunData& run, const std::string& runHref);
-Table problemTable(const RunData& run);
+Table caseTable(const ReportRun& run, std::vector<std::string>& omitted);
+Table stabilityTable(const ReportRun& run, const std::string& runHref);
+Table problemTable(const ReportRun& run);
 
 // In-page anchor of one frame's image strip.
 std::string imageAnchor(const std::string& caseId, int frame);

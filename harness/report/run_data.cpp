@@ -60,7 +60,7 @@ static void fillCase(ReportCase& c, const json& j) {
   if (auto t = j.find("target_area_px"); t != j.end() && t->is_number()) c.targetAreaPx = t->get<double>();
 }
 
-static void scanImages(RunData& run) {
+static void scanImages(ReportRun& run) {
   fs::path dir = fs::path(run.dir) / "images";
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return;
@@ -114,7 +114,7 @@ static size_t configIndex(const json& list, const std::string& name, bool byStem
 }
 
 // Cases in the config's order: by scheme, path, then parameter values.
-static void sortCases(RunData& run) {
+static void sortCases(ReportRun& run) {
   json config = run.context.value("config", json::object());
   if (!config.is_object()) config = json::object();
   json schemes = config.value("schemes", json::array()), paths = config.value("paths", json::array());
@@ -130,7 +130,7 @@ static void sortCases(RunData& run) {
 }
 
 // Scenario = path stem, plus terrain and resolution where the run has more than one of them.
-static void labelCases(RunData& run) {
+static void labelCases(ReportRun& run) {
   std::set<std::string> terrains, resolutions;
   for (auto& c : run.cases) {
     terrains.insert(c.terrain);
@@ -156,8 +156,8 @@ static void labelCases(RunData& run) {
   std::sort(run.paramLabels.begin(), run.paramLabels.end(), naturalLess);
 }
 
-RunData loadRun(const std::string& dir) {
-  RunData run;
+ReportRun loadReportRun(const std::string& dir) {
+  ReportRun run;
   run.dir = dir;
   fs::path root(dir);
   std::error_code ec;

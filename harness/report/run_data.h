@@ -25,7 +25,7 @@ struct ReportCase {
 // Images of one case: frame -> mode -> path relative to the run directory.
 using CaseImages = std::map<int, std::map<std::string, std::string>>;
 
-struct RunData {
+struct ReportRun {
   std::string dir;
   std::string name;  // config name, or the directory name
   nlohmann::json run = nlohmann::json::object();
@@ -39,7 +39,7 @@ struct RunData {
 };
 
 // Throws InputError when dir is not a run directory (neither summary.json nor cases/).
-RunData loadRun(const std::string& dir);
+ReportRun loadReportRun(const std::string& dir);
 
 // summary[key][stat] as a number; nullopt when the metric is absent or null.
 std::optional<double> summaryStat(const nlohmann::json& summary, const std::string& key, const std::string& stat);
