@@ -16,6 +16,7 @@
 #include "metrics/cracks.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
+#include "sweep/gbench_json.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 
@@ -302,6 +303,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   run["validation_errors"] = ctx.validationErrors.load();
   writeFileAtomic(runJson, run.dump(2));
   writeAggregates(totals.dir, context);
+  writeGoogleBenchmarkJson(totals.dir);  // summary in Google Benchmark's schema for its tools
   totals.validationErrors = ctx.validationErrors.load();
   return totals;
 }
