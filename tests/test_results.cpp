@@ -167,3 +167,21 @@ TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
   EXPECT_NE(header.find(",err_p95_px,"), std::string::npos);
   EXPECT_NE(header.find(",surplus,"), std::string::npos);
 }
+
+// A device without a feature a case needs: the case is skipped with the reason, the sweep goes on.
+TEST(Results, CaseNeedingAMissingFeatureIsSkipped) {
+  Config c = tinyConfig();
+  c.measure.every = 2;
+  c.measure.passes = {"histogram"};
+  fs::path d = freshDir("lodbench_skip");
+  setenv("LODBENCH_TEST_DISABLE", "geometryShader", 1);
+  RunTotals t = runSweep(c, {d.string(), false, false});
+  unsetenv("LODBENCH_TEST_DISABLE");
+  EXPECT_EQ(t.skipped, 2);
+  EXPECT_EQ(t.failed, 0);
+  json s = readJson(d / "summary.json");
+  for (auto& k : s["cases"]) {
+    EXPECT_EQ(k["status"], "skipped");
+    EXPECT_NE(k["reason"].get<std::string>().find("geometryShader"), std::string::npos) << k["reason"];
+  }
+}

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "render/compute_pass.h"
+#include "error.h"
 #include "render/patch_grid.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -238,12 +239,12 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
   const SchemeInfo& info = scheme_->info();
   if (mode == RenderMode::Wireframe && !ctx_.enabledFeatures.fillModeNonSolid)
-    throw std::runtime_error("device lacks fillModeNonSolid: wireframe images are unavailable");
+    throw FeatureMissing("device lacks fillModeNonSolid: wireframe images are unavailable");
   bool histogram = mode == RenderMode::Histogram;
   if (histogram && !ctx_.enabledFeatures.geometryShader)
-    throw std::runtime_error("device lacks geometryShader: triangle-size histograms are unavailable");
+    throw FeatureMissing("device lacks geometryShader: triangle-size histograms are unavailable");
   if (capture && !ctx_.enabledFeatures.vertexPipelineStoresAndAtomics)
-    throw std::runtime_error("device lacks vertexPipelineStoresAndAtomics: tessellation factors cannot be captured");
+    throw FeatureMissing("device lacks vertexPipelineStoresAndAtomics: tessellation factors cannot be captured");
   // Modules are destroyed on every exit, also when a later load or the pipeline creation throws.
   VkShaderModule mods[5] = {};
   struct ModuleGuard {

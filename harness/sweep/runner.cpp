@@ -263,8 +263,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     if (options.progress) {
       // Remaining time from the mean duration of the cases run so far in this invocation.
       double left = ran ? runSeconds / ran * double(cases.size() - i) : 0;
-      std::fprintf(stderr, "[%zu/%zu] %s  (%.0fs elapsed%s)\n", i + 1, cases.size(), c.id.c_str(), secondsSince(t0),
-                   ran ? (", ~" + std::to_string(int(left)) + "s left").c_str() : "");
+      std::string bar(20, '.');
+      std::fill(bar.begin(), bar.begin() + long(20 * i / cases.size()), '#');
+      std::fprintf(stderr, "[%s] %zu/%zu %s  (%.0fs elapsed%s)\n", bar.c_str(), i + 1, cases.size(), c.id.c_str(),
+                   secondsSince(t0), ran ? (", ~" + std::to_string(int(left)) + "s left").c_str() : "");
     }
     auto tc = std::chrono::steady_clock::now();
     CaseResult r;
@@ -273,6 +275,9 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     } catch (const Interrupted&) {
       totals.interrupted = true;
       break;
+    } catch (const FeatureMissing& e) {
+      r.status = "skipped";
+      r.reason = e.what();
     } catch (const std::exception& e) {
       r.status = "failed";
       r.reason = e.what();

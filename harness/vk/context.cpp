@@ -216,6 +216,12 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;  // wireframe images only
   ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
   ctx.enabledFeatures.geometryShader = have.geometryShader;  // measurement passes only
+  // Tests simulate a device without optional features (LODBENCH_TEST_DISABLE=geometryShader,...).
+  if (const char* off = std::getenv("LODBENCH_TEST_DISABLE")) {
+    std::string list = off;
+    if (list.find("geometryShader") != std::string::npos) ctx.enabledFeatures.geometryShader = VK_FALSE;
+    if (list.find("fillModeNonSolid") != std::string::npos) ctx.enabledFeatures.fillModeNonSolid = VK_FALSE;
+  }
 
   ctx.queueFamily = uint32_t(graphicsQueueFamily(ctx.physicalDevice));
   float prio = 1.0f;

@@ -4,6 +4,7 @@
 //   LODBENCH_BINARY   the lodbench executable (default build/lodbench)
 //   CHROMIUM          the browser (default /usr/bin/chromium)
 //   REPORT_TEST_OUT   where the report and the screenshot go (default: a fresh temp dir)
+//   REPORT_TEST_RUN   the run directory to report (default: the committed fixture)
 import {test} from 'node:test';
 import assert from 'node:assert/strict';
 import {execFileSync} from 'node:child_process';
@@ -17,7 +18,7 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..')
 const binary = process.env.LODBENCH_BINARY || path.join(root, 'build/lodbench');
 const browserPath = process.env.CHROMIUM || '/usr/bin/chromium';
 const out = process.env.REPORT_TEST_OUT || fs.mkdtempSync(path.join(os.tmpdir(), 'lodbench-report-'));
-const fixture = path.join(root, 'tests/data/report_run');
+const fixture = process.env.REPORT_TEST_RUN || path.join(root, 'tests/data/report_run');
 
 // Offline and quiet: no GPU, no network services, no first-run UI, a profile of its own.
 const launchArgs = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
