@@ -35,10 +35,7 @@ class Density : public Scheme {
   }
 
   SchemeTexture preprocess(const Heightfield& hf, const ParamValues& v) const override {
-    std::vector<float> d = densityMap(hf, float(v.at("threshold")), float(v.at("scale")));
-    SchemeTexture tex{hf.width, hf.height, std::vector<float>(d.size() * 4, 0.0f)};
-    for (size_t i = 0; i < d.size(); ++i) tex.rgba[i * 4] = d[i];
-    return tex;
+    return redTexture(hf.width, hf.height, densityMap(hf, float(v.at("threshold")), float(v.at("scale"))));
   }
 };
 

@@ -12,12 +12,6 @@
 namespace lb {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 class Distance : public Scheme {
  public:
   const SchemeInfo& info() const override {
@@ -40,12 +34,8 @@ class Distance : public Scheme {
   }
   float maxLevel(const ParamValues& v) const override { return float(std::max(v.at("min_lod"), v.at("max_lod"))); }
   void validate(const ParamValues& v) const override {
-    if (v.at("dmax") <= v.at("dmin"))
-      throw InputError("scheme 'distance': dmax (" + num(v.at("dmax")) + ") must be greater than dmin (" +
-                       num(v.at("dmin")) + ")");
-    if (v.at("min_lod") > v.at("max_lod"))
-      throw InputError("scheme 'distance': min_lod (" + num(v.at("min_lod")) + ") must not exceed max_lod (" +
-                       num(v.at("max_lod")) + ")");
+    requireOrdered(info().name, v, "dmin", "dmax", true);
+    requireOrdered(info().name, v, "min_lod", "max_lod", false);
   }
 };
 

@@ -17,12 +17,6 @@
 namespace lb {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 class PlaneFitScheme : public Scheme {
  public:
   const SchemeInfo& info() const override {
@@ -56,12 +50,8 @@ class PlaneFitScheme : public Scheme {
     return {planeFitBlockCount(hf.width), planeFitBlockCount(hf.height)};
   }
   void validate(const ParamValues& v) const override {
-    if (v.at("dmax") <= v.at("dmin"))
-      throw InputError("scheme 'planefit': dmax (" + num(v.at("dmax")) + ") must be greater than dmin (" +
-                       num(v.at("dmin")) + ")");
-    if (v.at("min_lod") > v.at("max_lod"))
-      throw InputError("scheme 'planefit': min_lod (" + num(v.at("min_lod")) + ") must not exceed max_lod (" +
-                       num(v.at("max_lod")) + ")");
+    requireOrdered(info().name, v, "dmin", "dmax", true);
+    requireOrdered(info().name, v, "min_lod", "max_lod", false);
   }
 };
 

@@ -44,6 +44,22 @@ ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
   return out;
 }
 
+void requireOrdered(const std::string& scheme, const ParamValues& values, const std::string& lo, const std::string& hi,
+                    bool strict) {
+  double a = values.at(lo), b = values.at(hi);
+  if (strict ? a < b : a <= b) return;
+  std::ostringstream s;
+  s << "scheme '" << scheme << "': " << hi << " (" << b << ") must be " << (strict ? "greater than " : "at least ") << lo
+    << " (" << a << ")";
+  throw InputError(s.str());
+}
+
+SchemeTexture redTexture(int width, int height, const std::vector<float>& red) {
+  SchemeTexture tex{width, height, std::vector<float>(red.size() * 4, 0.0f)};
+  for (size_t i = 0; i < red.size(); ++i) tex.rgba[i * 4] = red[i];
+  return tex;
+}
+
 const char* partitioningName(Partitioning p) {
   switch (p) {
     case Partitioning::Integer: return "integer";

@@ -90,6 +90,11 @@ class Scheme {
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.
 ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given);
+// For Scheme::validate: throws InputError unless values[lo] < values[hi] (or <= when !strict).
+void requireOrdered(const std::string& scheme, const ParamValues& values, const std::string& lo, const std::string& hi,
+                    bool strict);
+// A preprocessing texture with `red` in the first channel.
+SchemeTexture redTexture(int width, int height, const std::vector<float>& red);
 const char* partitioningName(Partitioning p);
 const char* topologyName(Topology t);
 

@@ -152,6 +152,19 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
   vkCmdPipelineBarrier2(cmd, &di);
 }
 
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  mb.srcStageMask = srcStage;
+  mb.srcAccessMask = srcAccess;
+  mb.dstStageMask = dstStage;
+  mb.dstAccessMask = dstAccess;
+  VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  di.memoryBarrierCount = 1;
+  di.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cmd, &di);
+}
+
 std::string shaderDir() {
   const char* env = std::getenv("LODBENCH_SHADER_DIR");
   return env && *env ? env : LODBENCH_SHADER_DIR;

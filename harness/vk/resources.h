@@ -44,6 +44,10 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
                   VkAccessFlags2 dstAccess);
 
+// A global memory dependency (e.g. shader or copy writes before host reads).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 VkShaderModule loadShaderModule(Context& ctx, const std::string& name);  // name relative to the SPIR-V dir
 std::string shaderDir();  // LODBENCH_SHADER_DIR env override, else the build's directory
 
