@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "sweep/gbench_json.h"
 #include "sweep/results.h"
 #include "sweep/runner.h"
 
@@ -64,6 +65,7 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
               {"start_time", runs[0].value("start_time", "")}, {"end_time", isoTimeUtc()}};
   writeFileAtomic(outDir + "/run.json", run.dump(2));
   writeAggregates(outDir, first);
+  writeGoogleBenchmarkJson(outDir);
   return t;
 }
 

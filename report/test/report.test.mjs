@@ -66,7 +66,9 @@ test('report.html renders every chart offline without errors or warnings', async
       assert.ok(img.w > 0, 'image decoded');
     }
     const tables = await page.$$eval('table', (els) => els.map((e) => e.className));
-    for (const t of ['context', 'stability', 'problems', 'cases']) assert.ok(tables.includes(t), `${t} table`);
+    // The fixture has failed and skipped cases; another run has the problems table only if it does.
+    const expected = process.env.REPORT_TEST_RUN ? ['context', 'stability', 'cases'] : ['context', 'stability', 'problems', 'cases'];
+    for (const t of expected) assert.ok(tables.includes(t), `${t} table`);
 
     await page.screenshot({path: path.join(out, 'report.png'), fullPage: true});
     console.log(`screenshot: ${path.join(out, 'report.png')}`);
