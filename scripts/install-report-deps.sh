@@ -5,17 +5,12 @@
 # /usr/bin/chromium. The harness itself needs none of this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-missing=()
-command -v node >/dev/null || missing+=(nodejs)
-command -v npm >/dev/null || missing+=(npm)
-command -v chromium >/dev/null || command -v chromium-browser >/dev/null || missing+=(chromium)
-if ((${#missing[@]})); then
-  echo "lodbench: installing ${missing[*]}" >&2
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  $sudo apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+# Only what is missing: a node or chromium that is already on PATH (from elsewhere) is used as is.
+pkgs=()
+command -v node >/dev/null || pkgs+=(nodejs)
+command -v npm >/dev/null || pkgs+=(npm)
+command -v chromium >/dev/null || command -v chromium-browser >/dev/null || pkgs+=(chromium)
+((${#pkgs[@]} == 0)) || bash scripts/apt-install.sh "${pkgs[@]}"
 major=$(node -p 'process.versions.node.split(".")[0]')
 if ((major < 18)); then
   echo "lodbench: report/ needs Node.js 18 or newer, found $(node --version)" >&2

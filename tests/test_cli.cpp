@@ -1,6 +1,8 @@
 // The lodbench binary: --help everywhere, exit codes, and errors that name the bad input.
 #include <gtest/gtest.h>
 
+#include "cli_run.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -9,21 +11,10 @@
 
 namespace {
 
-struct Out {
-  int code = -1;
-  std::string text;
-};
+using Out = lb::test::CliOut;
 
-Out runCli(const std::string& args) {
-  std::string cmd = std::string(LODBENCH_BINARY) + " " + args + " 2>&1";
-  Out o;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), int(buf.size()), p)) o.text += buf.data();
-  int status = pclose(p);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+// Keeps the validation layer as ctest sets it.
+Out runCli(const std::string& args) { return lb::test::lodbench(args, false); }
 
 const std::string kSrc = LODBENCH_SOURCE_DIR;
 
