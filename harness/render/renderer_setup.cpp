@@ -92,13 +92,6 @@ void Renderer::createTargets() {
   si.magFilter = si.minFilter = VK_FILTER_NEAREST;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VK_CHECK(vkCreateSampler(ctx_.device, &si, nullptr, &sampler_));
-  // Placeholder scheme resources so every binding is valid for schemes without preprocessing.
-  float zero[4] = {0, 0, 0, 0};
-  createImage(ctx_, schemeTex_, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-              VK_IMAGE_ASPECT_COLOR_BIT);
-  uploadImage(ctx_, schemeTex_, zero, sizeof zero);
-  createBufferWithData(ctx_, schemeBuf_, zero, sizeof zero, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
   createBuffer(ctx_, uniforms_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
