@@ -5,6 +5,7 @@
 // sphere (sphere scheme); fractional_even as in that scheme, so the two differ only by the density.
 // Shader: shaders/density.tesc.
 #include "render/scheme.h"
+#include "shaders/density_params.h"
 #include "terrain/density_map.h"
 #include "terrain/heightfield.h"
 
@@ -20,10 +21,10 @@ class Density : public Scheme {
         "amd-detail-tessellation-11: Density-based Tessellation; rapp-adaptive-terrain-thesis-2011: 5.2.3",
         {
             // Heights are normalised to [0,1]; the SDK used 2/255 to skip its 8-bit steps, float maps have none.
-            {"threshold", 0, 0, 1, false, "second differences below this (normalised height) are ignored"},
+            {"threshold", LB_DENSITY_THRESHOLD, 0, 0, 1, false, "second differences below this (normalised height) are ignored"},
             // Per-sample second differences shrink with resolution: 40 spreads a 513^2 map over (1/255, 1].
-            {"scale", 40, 0, 10000, false, "density = scale * weighted second differences, clamped to [1/255, 1]"},
-            {"tri_size", 3, 0.5, 64, false, "target triangle width in pixels before the density factor"},
+            {"scale", LB_DENSITY_SCALE, 40, 0, 10000, false, "density = scale * weighted second differences, clamped to [1/255, 1]"},
+            {"tri_size", LB_DENSITY_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels before the density factor"},
         },
         Topology::Quad4,
         Partitioning::FractionalEven,

@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "render/scheme.h"
+#include "shaders/distance_params.h"
 
 namespace lb {
 namespace {
@@ -20,10 +21,10 @@ class Distance : public Scheme {
         "lerp(min_lod, max_lod) by the camera distance of patch and edge midpoints between dmin and dmax",
         "practical-d3d11-ch9: 9.1.1 Listing 9.7 ComputePatchLOD; amd-detail-tessellation-11: Distance-adaptive "
         "Tessellation (per-edge factors)",
-        {{"min_lod", 1, 1, 64, false, "level at distance dmax and beyond (minMaxLOD.x)"},
-         {"max_lod", 32, 1, 64, false, "level at distance dmin and nearer (minMaxLOD.y)"},
-         {"dmin", 50, 0, 1e6, false, "world distance at which the level reaches max_lod (minMaxDistance.x)"},
-         {"dmax", 1000, 0, 1e6, false, "world distance at which the level falls to min_lod (minMaxDistance.y)"}},
+        {{"min_lod", LB_DISTANCE_MIN_LOD, 1, 1, 64, false, "level at distance dmax and beyond (minMaxLOD.x)"},
+         {"max_lod", LB_DISTANCE_MAX_LOD, 32, 1, 64, false, "level at distance dmin and nearer (minMaxLOD.y)"},
+         {"dmin", LB_DISTANCE_DMIN, 50, 0, 1e6, false, "world distance at which the level reaches max_lod (minMaxDistance.x)"},
+         {"dmax", LB_DISTANCE_DMAX, 1000, 0, 1e6, false, "world distance at which the level falls to min_lod (minMaxDistance.y)"}},
         Topology::Quad4,
         Partitioning::FractionalOdd,
         "distance",

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "render/scheme.h"
+#include "shaders/interlock_params.h"
 
 namespace lb {
 namespace {
@@ -22,11 +23,11 @@ class Interlock : public Scheme {
         "interlock",
         "interlocking tiles: distance LOD of own + 4 neighbour midpoints, edge = min",
         "practical-d3d11-ch9: 9.1.1 GPU-Accelerated Interlocking Tiles, Listings 9.1, 9.2, 9.4-9.7",
-        {{"dmin", 100, 0, 100000, false, "distance at and below which a midpoint gets max_lod"},
-         {"dmax", 1500, 0, 100000, false, "distance at and beyond which a midpoint gets min_lod"},
-         {"min_lod", 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
-         {"max_lod", 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
-         {"cull", 1, 0, 1, true, "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
+        {{"dmin", LB_INTERLOCK_DMIN, 100, 0, 100000, false, "distance at and below which a midpoint gets max_lod"},
+         {"dmax", LB_INTERLOCK_DMAX, 1500, 0, 100000, false, "distance at and beyond which a midpoint gets min_lod"},
+         {"min_lod", LB_INTERLOCK_MIN_LOD, 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
+         {"max_lod", LB_INTERLOCK_MAX_LOD, 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
+         {"cull", LB_INTERLOCK_CULL, 1, 0, 1, true, "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
         Topology::Quad12,
         Partitioning::FractionalOdd,
         "interlock",

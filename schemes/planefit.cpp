@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "render/scheme.h"
+#include "shaders/planefit_params.h"
 #include "terrain/heightfield.h"
 #include "terrain/plane_fit.h"
 
@@ -26,14 +27,14 @@ class PlaneFitScheme : public Scheme {
         "practical-d3d11-ch9: 9.1.2 Pre-Processing the Height Map, Listings 9.10-9.16 (+ Listing 9.7)",
         // Order matters: the shaders read parameters by index (distance_lod.glsl: 0-3, planefit.comp: 4,
         // planefit.tesc: 5).
-        {{"min_lod", 1, 1, 64, false, "level of flat or distant patches (minMaxLOD.x)"},
-         {"max_lod", 32, 1, 64, false, "level of rough patches at dmin and nearer (minMaxLOD.y)"},
-         {"dmin", 50, 0, 1e6, false, "world distance of full distance LOD (minMaxDistance.x)"},
-         {"dmax", 1000, 0, 1e6, false, "world distance where the LOD reaches min_lod (minMaxDistance.y)"},
-         {"fit", 0, 0, 1, true, "fit=book|lsq: 0 = the book's corner-normal plane, 1 = least-squares plane"},
+        {{"min_lod", LB_PLANEFIT_MIN_LOD, 1, 1, 64, false, "level of flat or distant patches (minMaxLOD.x)"},
+         {"max_lod", LB_PLANEFIT_MAX_LOD, 32, 1, 64, false, "level of rough patches at dmin and nearer (minMaxLOD.y)"},
+         {"dmin", LB_PLANEFIT_DMIN, 50, 0, 1e6, false, "world distance of full distance LOD (minMaxDistance.x)"},
+         {"dmax", LB_PLANEFIT_DMAX, 1000, 0, 1e6, false, "world distance where the LOD reaches min_lod (minMaxDistance.y)"},
+         {"fit", LB_PLANEFIT_FIT, 0, 0, 1, true, "fit=book|lsq: 0 = the book's corner-normal plane, 1 = least-squares plane"},
          // The book's deviation is mostly the tilt of its nearly vertical plane (0.3-0.8 on the
          // procedural terrains); the least-squares one is in world units (a few units there).
-         {"roughness", 0.75, 1e-6, 1e6, false,
+         {"roughness", LB_PLANEFIT_ROUGHNESS, 0.75, 1e-6, 1e6, false,
           "block deviation earning the full distance LOD, in the fit's units (book: ~0.3-0.8; lsq: world units, e.g. "
           "4)"}},
         Topology::Quad4,

@@ -3,6 +3,7 @@
 // around the displaced edge divided by the target triangle width; per-patch frustum culling;
 // fractional_even partitioning. Shader: shaders/sphere.tesc.
 #include "render/scheme.h"
+#include "shaders/sphere_params.h"
 
 namespace lb {
 namespace {
@@ -14,7 +15,7 @@ class Sphere : public Scheme {
         "sphere",
         "screen-space projected edge sphere / target triangle width",
         "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD; Crack-Free Tessellation",
-        {{"tri_size", 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"}},
+        {{"tri_size", LB_SPHERE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"}},
         Topology::Quad4,
         Partitioning::FractionalEven,
         "sphere",

@@ -22,6 +22,7 @@
 #include "metrics/cracks.h"
 #include "render/patch_grid.h"
 #include "render/scheme.h"
+#include "shaders/sphere_rings_params.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -51,10 +52,10 @@ class SphereRings : public Scheme {
         "sphere LOD on concentric tile rings doubling in size, crack-free across ring boundaries",
         "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
         "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches",
-        {{"tri_size", 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"},
-         {"rings", 4, 1, 8, true, "number of tile rings (8x8 tiles each, inner 4x4 hole after the first)"},
-         {"tile_size", 0, 0, 1, false, "innermost tile size / extent; 0 = the outer ring just covers the terrain"},
-         {"pow2", 1, 0, 1, true, "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
+        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"},
+         {"rings", LB_SPHERE_RINGS_RINGS, 4, 1, 8, true, "number of tile rings (8x8 tiles each, inner 4x4 hole after the first)"},
+         {"tile_size", LB_SPHERE_RINGS_TILE_SIZE, 0, 0, 1, false, "innermost tile size / extent; 0 = the outer ring just covers the terrain"},
+         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true, "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
         Topology::Quad4,
         Partitioning::FractionalEven,
         "sphere_rings",

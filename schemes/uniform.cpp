@@ -1,5 +1,6 @@
 // Baseline: one fixed integer tessellation level for every patch edge and interior.
 #include "render/scheme.h"
+#include "shaders/uniform_params.h"
 
 namespace lb {
 namespace {
@@ -11,7 +12,7 @@ class Uniform : public Scheme {
         "uniform",
         "one fixed tessellation level everywhere",
         "baseline",
-        {{"level", 8, 1, 64, true, "tessellation level of every edge and interior"}},
+        {{"level", LB_UNIFORM_LEVEL, 8, 1, 64, true, "tessellation level of every edge and interior"}},
         Topology::Quad4,
         Partitioning::Integer,
         "uniform",

@@ -5,15 +5,14 @@
 // by the maximum density along the edge, so flat ground gets few triangles and creases many. Both
 // terms depend only on the edge, so neighbours agree. Patches outside the frustum get factor 0.
 #include "common.glsl"
+#include "density_params.h"
 #include "tesc_common.glsl"
 #include "sphere_lod.glsl"
 #include "density.glsl"
 
-const int kTriSize = 2;  // parameters: threshold, scale (used at load time), tri_size
-
 float edgeLevel(vec3 p0, vec3 p1, ivec2 g0, ivec2 g1) {
   // Multiply before clamping, as the seed does (the tessellator clamps its product).
-  float screen = sphereDiameterPixels(p0, p1, distance(p0, p1)) / schemeParam(kTriSize);
+  float screen = sphereDiameterPixels(p0, p1, distance(p0, p1)) / schemeParam(LB_DENSITY_TRI_SIZE);
   float density = maxDensityAlongEdge(gridVertexTexel(g0), gridVertexTexel(g1));
   return clamp(screen * density, 1.0, LB_MAX_FACTOR);
 }

@@ -10,6 +10,7 @@
 // (i+1,j+2); clamped to the grid, so at the border a "neighbour" collapses onto the shared edge and
 // its midpoint is the edge midpoint (Listing 9.2 and the text after Figure 9.5).
 #include "common.glsl"
+#include "interlock_params.h"
 #include "tesc_common.glsl"
 
 // Listing 9.6, with the corners always passed in the same grid order -- (a,b) (a+1,b) (a+1,b+1)
@@ -24,8 +25,8 @@ vec3 cellMidpoint(vec3 p00, vec3 p10, vec3 p11, vec3 p01) {
 // Listing 9.7 (ComputeScaledDistance + ComputePatchLOD), with the clamping the text describes.
 // Distance written out (no dot/distance builtins) so every operation is covered by `precise`.
 float cellLod(vec3 midpoint) {
-  float minDistance = schemeParam(0), maxDistance = schemeParam(1);
-  float minLod = schemeParam(2), maxLod = schemeParam(3);
+  float minDistance = schemeParam(LB_INTERLOCK_DMIN), maxDistance = schemeParam(LB_INTERLOCK_DMAX);
+  float minLod = schemeParam(LB_INTERLOCK_MIN_LOD), maxLod = schemeParam(LB_INTERLOCK_MAX_LOD);
   precise vec3 d = midpoint - frame.lodEye.xyz;
   precise float dist = sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
   // dmin >= dmax degenerates to a step at dmin instead of dividing by 0.
@@ -39,7 +40,7 @@ void main() {
   if (gl_InvocationID != 0) return;
   // Not in Listing 9.5 (the book's D3D11 version draws every tile); the same per-patch frustum test
   // as the sphere scheme, switchable so cull=0 reproduces the book exactly.
-  if (schemeParam(4) != 0.0 && patchCulled()) {
+  if (schemeParam(LB_INTERLOCK_CULL) != 0.0 && patchCulled()) {
     writeLevels(vec4(0.0), vec2(0.0));
     return;
   }

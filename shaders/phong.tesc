@@ -7,14 +7,12 @@
 // density (per edge the maximum along the edge, inside the largest of the three). fractional_odd.
 // The control points carry unit vertex normals and the shape factor for terrain_tri.tese.
 #include "common.glsl"
+#include "phong_params.h"
 #include "tesc_tri_common.glsl"
 #include "density.glsl"
 
 layout(location = 1) out vec3 outNormal[];
 layout(location = 2) patch out float outShape;
-
-// Parameters in declaration order; threshold and scale (4, 5) only shape the density map.
-const int kTriSize = 0, kAlpha = 1, kFrustumTolerance = 2, kBackFaceTolerance = 3;
 
 // Pixel position of a world point seen by the LOD camera (GetScreenSpacePosition of the AMD samples
 // the thesis builds on); false when the point is not in front of the camera.
@@ -64,9 +62,9 @@ void main() {
   outNormal[gl_InvocationID] = gridNormal(inPos[gl_InvocationID].xz);
   barrier();  // invocation 0 reads every corner's normal below
   if (gl_InvocationID != 0) return;
-  outShape = schemeParam(kAlpha);
+  outShape = schemeParam(LB_PHONG_ALPHA);
   float longest = max(max(distance(inPos[0], inPos[1]), distance(inPos[1], inPos[2])), distance(inPos[2], inPos[0]));
-  if (outsideFrustum(schemeParam(kFrustumTolerance) * longest) || backFacing(schemeParam(kBackFaceTolerance))) {
+  if (outsideFrustum(schemeParam(LB_PHONG_FRUSTUM_TOLERANCE) * longest) || backFacing(schemeParam(LB_PHONG_BACKFACE_TOLERANCE))) {
     writeTriLevels(vec3(0.0), 0.0);
     return;
   }
@@ -81,7 +79,7 @@ void main() {
   vec3 screen, density;
   for (int k = 0; k < 3; ++k) {
     int a = (k + 1) % 3, b = (k + 2) % 3;
-    screen[k] = front[a] && front[b] ? distance(px[a], px[b]) / schemeParam(kTriSize) : LB_MAX_FACTOR;
+    screen[k] = front[a] && front[b] ? distance(px[a], px[b]) / schemeParam(LB_PHONG_TRI_SIZE) : LB_MAX_FACTOR;
     density[k] = maxDensityAlongEdge(texel[a], texel[b]);
   }
   float inner = (screen.x + screen.y + screen.z) / 3.0 * max(max(density.x, density.y), density.z);

@@ -7,6 +7,9 @@
 // the arithmetic and its order identical.
 #define LB_COMPUTE_PASS
 #include "shared.h"
+#include "planefit_params.h"
+
+float computeParam(int i) { return pass.params[i / 4][i % 4]; }
 
 layout(local_size_x = LB_PLANE_FIT_BLOCK, local_size_y = LB_PLANE_FIT_BLOCK) in;
 layout(set = 0, binding = LB_BINDING_HEIGHT) uniform sampler2D heightMap;
@@ -23,7 +26,7 @@ shared vec3 rawNormals[2][2];
 shared vec3 corners[2][2];
 shared float blockMean;
 
-bool leastSquares() { return pass.params[1].x > 0.5; }  // scheme parameter 4: fit
+bool leastSquares() { return computeParam(LB_PLANEFIT_FIT) > 0.5; }
 
 // Block-centred sample position in world units (least-squares fit).
 vec2 centredXZ(int gi) {

@@ -7,6 +7,7 @@
 // (Figure 9.23) and a block as rough as `roughness` gets the full distance LOD.
 // Crack-free: an edge's factor depends only on the edge (its midpoint, the blocks along it).
 #include "common.glsl"
+#include "planefit_params.h"
 #include "tesc_common.glsl"
 #include "distance_lod.glsl"
 
@@ -37,10 +38,9 @@ float roughness(ivec2 g0, ivec2 g1) {
   return deviation;
 }
 
-// Scheme parameter 5: roughness.
 float weightedLod(vec3 p, ivec2 g0, ivec2 g1) {
-  float weight = clamp(roughness(g0, g1) / schemeParam(5), 0.0, 1.0);
-  return mix(schemeParam(0), schemeParam(1), (1.0 - scaledDistance(p)) * weight);
+  float weight = clamp(roughness(g0, g1) / schemeParam(LB_PLANEFIT_ROUGHNESS), 0.0, 1.0);
+  return mix(schemeParam(LB_PLANEFIT_MIN_LOD), schemeParam(LB_PLANEFIT_MAX_LOD), (1.0 - scaledDistance(p)) * weight);
 }
 
 void main() {

@@ -13,7 +13,7 @@
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer
-#define LB_SCHEME_PARAM_VEC4S 4 // up to 16 scheme parameters, in declaration order
+#define LB_SCHEME_PARAM_VEC4S 4 // up to 16 scheme parameters, at the slots of shaders/<scheme>_params.h
 #define LB_PLANE_FIT_BLOCK 16   // planefit: heightfield samples per block side (ch9 Listing 9.10 numthreads)
 
 #define LB_MODE_SHADED 0

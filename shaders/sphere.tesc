@@ -5,12 +5,13 @@
 // screen; factor = projected diameter / g_tessellatedTriSize. Edge factors depend only on the
 // edge's two end points, so neighbours agree. Patches outside the frustum get factor 0 (culled).
 #include "common.glsl"
+#include "sphere_params.h"
 #include "tesc_common.glsl"
 #include "sphere_lod.glsl"
 
 float edgeLevel(vec3 p0, vec3 p1) {
   // Behind the LOD camera the projection is meaningless; the patch is culled or partly visible.
-  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1), schemeParam(0));  // tri_size
+  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1), schemeParam(LB_SPHERE_TRI_SIZE));
 }
 
 void main() {

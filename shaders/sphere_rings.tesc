@@ -5,6 +5,7 @@
 // sphere LOD per edge; on tile edges whose neighbour tile is half or twice our size, the two
 // sides agree on integer, even (and by default power-of-2) levels with large = 2 x small.
 #include "common.glsl"
+#include "sphere_rings_params.h"
 #include "tesc_common.glsl"
 #include "sphere_lod.glsl"
 
@@ -18,8 +19,8 @@ struct RingPatch {
 };
 layout(set = 0, binding = LB_BINDING_SCHEME_BUF, std430) readonly buffer Rings { RingPatch patches[]; } rings;
 
-float triSize() { return schemeParam(0); }
-bool pow2Clamp() { return schemeParam(3) != 0.0; }
+float triSize() { return schemeParam(LB_SPHERE_RINGS_TRI_SIZE); }
+bool pow2Clamp() { return schemeParam(LB_SPHERE_RINGS_POW2) != 0.0; }
 
 // Smallest power of two >= t, exact (frexp instead of log2, which may be off by an ulp).
 float pow2Ceil(float t) {

@@ -5,11 +5,12 @@
 // patch (i+1, j)) gets twice the sphere level (or half of it above 32), which always differs from
 // the level the neighbour computes for the same edge. The crack detectors must find these edges.
 #include "common.glsl"
+#include "sphere_params.h"
 #include "tesc_common.glsl"
 #include "sphere_lod.glsl"
 
 float edgeLevel(vec3 p0, vec3 p1) {
-  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1), schemeParam(0));  // tri_size
+  return sphereToScreenSpaceTessellation(p0, p1, distance(p0, p1), schemeParam(LB_SPHERE_TRI_SIZE));
 }
 
 void main() {

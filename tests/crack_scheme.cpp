@@ -1,5 +1,7 @@
 #include "crack_scheme.h"
 
+#include "shaders/sphere_params.h"
+
 namespace lbtest {
 namespace {
 
@@ -10,7 +12,7 @@ class CrackScheme : public lb::Scheme {
         "test-crack",
         "TEST ONLY: sphere LOD with mismatched shared-edge levels on purpose",
         "tests/crack_scheme.h",
-        {{"tri_size", 3, 0.5, 64, false, "target triangle width in pixels"}},
+        {{"tri_size", LB_SPHERE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels"}},
         lb::Topology::Quad4,
         lb::Partitioning::FractionalEven,
         "test_crack",

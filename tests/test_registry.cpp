@@ -73,6 +73,28 @@ TEST_P(EveryScheme, RejectsOutOfRangeParameters) {
   EXPECT_THROW(resolveParams(info, {{"no_such_parameter", 1.0}}), InputError);
 }
 
+// Parameters reach the shaders through named slots (shaders/<scheme>_params.h), never by list order.
+TEST_P(EveryScheme, ParameterSlotsAreDistinctAndInRange) {
+  const SchemeInfo& info = findScheme(GetParam())->info();
+  std::set<int> slots;
+  for (const ParamSpec& p : info.params) {
+    EXPECT_GE(p.slot, 0) << p.name;
+    EXPECT_LT(p.slot, LB_SCHEME_PARAM_VEC4S * 4) << p.name;
+    EXPECT_TRUE(slots.insert(p.slot).second) << p.name << " shares slot " << p.slot;
+  }
+}
+
+// A parameter lands in its slot whatever its position in the list.
+TEST_P(EveryScheme, UpdatePacksEachParameterAtItsSlot) {
+  const Scheme& s = *findScheme(GetParam());
+  ParamValues values = resolveParams(s.info(), {});
+  FrameUniforms u{};
+  for (size_t i = 0; i < s.info().params.size(); ++i) values[s.info().params[i].name] = 0.125 * double(i + 1);
+  s.update(u, values);
+  for (const ParamSpec& p : s.info().params)
+    EXPECT_EQ(u.params[p.slot / 4][p.slot % 4], float(values[p.name])) << p.name;
+}
+
 INSTANTIATE_TEST_SUITE_P(Registry, EveryScheme, ::testing::ValuesIn(schemeNamesList()), paramName);
 
 TEST(Registry, NamesAreUniqueAndDescribed) {

@@ -1,5 +1,6 @@
 #include "render/scheme.h"
 
+#include <cassert>
 #include <cmath>
 #include <sstream>
 
@@ -9,9 +10,10 @@
 namespace lb {
 
 void Scheme::update(FrameUniforms& frame, const ParamValues& values) const {
-  const auto& specs = info().params;
-  for (size_t i = 0; i < specs.size() && i < LB_SCHEME_PARAM_VEC4S * 4; ++i)
-    frame.params[i / 4][int(i % 4)] = float(values.at(specs[i].name));
+  for (const ParamSpec& p : info().params) {
+    assert(p.slot >= 0 && p.slot < LB_SCHEME_PARAM_VEC4S * 4);
+    frame.params[p.slot / 4][p.slot % 4] = float(values.at(p.name));
+  }
 }
 
 double Scheme::targetAreaPx(const ParamValues& values) const {

@@ -18,6 +18,7 @@ enum class Partitioning { Integer, FractionalEven, FractionalOdd };
 
 struct ParamSpec {
   std::string name;
+  int slot = -1;  // index in FrameUniforms::params: LB_<SCHEME>_<PARAM> from shaders/<scheme>_params.h
   double defaultValue = 0;
   double min = 0, max = 0;
   bool integer = false;
@@ -28,7 +29,7 @@ struct SchemeInfo {
   std::string name;
   std::string description;  // one line
   std::string seed;         // source document and section it follows
-  std::vector<ParamSpec> params;  // packed into FrameUniforms::params in this order
+  std::vector<ParamSpec> params;  // each packed into FrameUniforms::params at its slot
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
   std::string tesc;                       // shader stem: shaders/<tesc>.tesc
