@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Runs the published real-GPU sweeps on a machine with an NVIDIA GPU from a carried static build
+# (-DLODBENCH_STATIC_RUNTIME=ON) and packs them into OUT_DIR/results.tar.gz.
+# Usage: scripts/device-publish.sh BUILD_DIR OUT_DIR CONFIG...
+# The GPU idles at a low clock: a few seconds of load first, and the clock is recorded before and after.
+set -euo pipefail
+build=$1 out=$2
+shift 2
+export LODBENCH_SHADER_DIR=$build/shaders
+work=$(mktemp -d)
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$work/gpu.txt"
+"$build/lodbench" devices | tee -a "$work/gpu.txt"
+start=$(date +%s)
+while (( $(date +%s) - start < 8 )); do
+  "$build/lodbench" run configs/gpu-measure-off.json --out "$work/warmup" -q >/dev/null; rm -rf "$work/warmup"
+done
+nvidia-smi --query-gpu=clocks.sm --format=csv | tee -a "$work/gpu.txt"
+rc=0
+for config in "$@"; do
+  name=$(basename "$config" .json)
+  t0=$(date +%s)
+  "$build/lodbench" run "$config" --out "$work/$name" -q || rc=$?
+  echo "$name: exit $rc in $(( $(date +%s) - t0 )) s" | tee -a "$work/gpu.txt"
+  nvidia-smi --query-gpu=clocks.sm --format=csv,noheader | tee -a "$work/gpu.txt"
+done
+tar -czf "$out/results.tar.gz" -C "$work" .
+exit $rc
