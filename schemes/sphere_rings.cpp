@@ -132,11 +132,13 @@ class SphereRings : public Scheme {
         "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
         "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement Map "
         "Generation (snapping)",
-        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"},
+        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
+          "target triangle width in pixels (g_tessellatedTriSize)"},
          {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
           "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
           "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
-         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true, "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
+         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
+          "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
         Topology::Quad4,
         Partitioning::FractionalEven,
         "sphere_rings",
@@ -164,7 +166,8 @@ class SphereRings : public Scheme {
   // Ring boundaries are T-junctions: the grid rule does not apply; compare vertex patterns. The
   // layout is translation-invariant, so the local mesh has the topology of every frame's; patches
   // off the terrain that frame were culled (levels 0) and do not count.
-  long crackEdges(const Heightfield& hf, const ParamValues& v, int grid, const std::vector<float>& levels) const override {
+  long crackEdges(const Heightfield& hf, const ParamValues& v, int grid,
+                  const std::vector<float>& levels) const override {
     return layoutCrackEdges(buildRings(hf, v, grid, false), levels);
   }
 };
@@ -177,8 +180,9 @@ int ringCount(const ParamValues& v, int grid) {
   const int rings = int(v.at("rings"));
   if (rings == 0) return needed;
   if (rings < needed)
-    throw InputError("sphere-rings: rings = " + std::to_string(rings) + " leaves part of the terrain uncovered at grid " +
-                     std::to_string(grid) + " (needs >= " + std::to_string(needed) + ", or 0 for that)");
+    throw InputError("sphere-rings: rings = " + std::to_string(rings) +
+                     " leaves part of the terrain uncovered at grid " + std::to_string(grid) +
+                     " (needs >= " + std::to_string(needed) + ", or 0 for that)");
   return rings;
 }
 

@@ -51,7 +51,8 @@ std::vector<CameraPose> shippedPathPoses(int perPath) {
   for (const char* name : {"flyover", "lowalt", "horizon"}) {
     CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/" + name + ".csv");
     int frames = frameCount(path, 30);
-    for (int k = 0; k < perPath; ++k) poses.push_back(samplePose(path, 30, k * (frames - 1) / (perPath - 1), testTerrain()));
+    for (int k = 0; k < perPath; ++k)
+      poses.push_back(samplePose(path, 30, k * (frames - 1) / (perPath - 1), testTerrain()));
   }
   return poses;
 }
