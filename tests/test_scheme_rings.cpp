@@ -10,6 +10,7 @@
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"
 #include "metrics/edge_pattern.h"
+#include "render/patch_grid.h"
 #include "schemes/sphere_rings_layout.h"
 #include "shaders/shared.h"
 #include "shaders/sphere_rings_params.h"
@@ -179,6 +180,32 @@ TEST_F(SphereRingsGpu, RingsFollowTheCameraAndStayOnTheTerrain) {
     std::vector<float> lv = r.capturedLevels();
     const glm::ivec2 k = packedCentre(eye, grid);
     const glm::vec2 eyeCell = xz / (hf.extent / grid);
+    // Culling follows the moved rings: a patch is dropped exactly when it is off the terrain or
+    // its box (exact height bounds of its moved footprint) lies outside the LOD frustum.
+    CameraMatrices m = cameraMatrices(pose, 160.0f / 90.0f, hf.extent);
+    glm::vec4 planes[6];
+    frustumPlanes(m.proj * m.view, planes);
+    const float unit = hf.extent / grid;
+    int compared = 0;
+    for (size_t p = 0; p < g.bounds.size(); ++p) {
+      PatchRect rc = patchRect(g, p);
+      glm::vec2 lo(rc.x0 + k.x, rc.z0 + k.y), hi(rc.x1 + k.x, rc.z1 + k.y);
+      if (lo.x < 0 || lo.y < 0 || lo.x >= grid || lo.y >= grid) {
+        EXPECT_FALSE(patchDrawn(lv, p, Topology::Quad4)) << "patch " << p << " off the terrain";
+        continue;
+      }
+      glm::vec2 b = rectHeightBounds(hf, lo * unit, hi * unit);
+      float nearest = INFINITY;  // signed distance of the box's farthest corner inside each plane
+      for (const glm::vec4& pl : planes) {
+        glm::vec3 v(pl.x >= 0 ? hi.x * unit : lo.x * unit, pl.y >= 0 ? b.y : b.x,
+                    pl.z >= 0 ? hi.y * unit : lo.y * unit);
+        nearest = std::min(nearest, glm::dot(glm::vec3(pl), v) + pl.w);
+      }
+      if (std::abs(nearest) < 1e-3f * hf.extent) continue;  // float-close to a plane: either is right
+      EXPECT_EQ(patchDrawn(lv, p, Topology::Quad4), nearest > 0) << "patch " << p;
+      ++compared;
+    }
+    EXPECT_GT(compared, 1000);
     int drawn = 0, underEye = -1, farRing = 0;
     for (size_t p = 0; p < g.bounds.size(); ++p) {
       if (!patchDrawn(lv, p, Topology::Quad4)) continue;
