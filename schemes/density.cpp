@@ -4,6 +4,10 @@
 // along the edge multiplies a screen-space factor. The screen-space term is NVIDIA's projected edge
 // sphere (sphere scheme); fractional_even as in that scheme, so the two differ only by the density.
 // Shader: shaders/density.tesc.
+//
+// Scale-free as it stands: `threshold` and the second differences are in heights normalised to the
+// terrain's height range, taken per heightfield sample (no world distance), and tri_size is in
+// pixels, so scaling extent, heights and camera together changes nothing (tests/test_scale.cpp).
 #include "render/scheme.h"
 #include "shaders/density_params.h"
 #include "terrain/density_map.h"

@@ -15,16 +15,19 @@ namespace {
 class Interlock : public Scheme {
  public:
   const SchemeInfo& info() const override {
-    // Listing 9.7's minMaxDistance / minMaxLOD. The book gives no values; these suit extent 1000:
-    // max_lod 16 is one segment per heightfield texel for 513 samples over a 32-patch grid (the
-    // book sizes its height map 4-8x its grid for this reason), and LOD falls to 1 about a
-    // terrain diagonal away.
+    // Listing 9.7's minMaxDistance / minMaxLOD. The book gives no values. Distances are fractions
+    // of the terrain extent (scale-free: the same picture at any world scale gets the same
+    // levels; the extent, not the patch size, because Listing 9.7 compares with two
+    // application-wide distances). The defaults keep the earlier world-unit ones chosen on the
+    // 1000-unit procedural terrain in proportion: dmin 100 -> 0.1, dmax 1500 -> 1.5 (LOD falls to
+    // 1 about a terrain diagonal away). max_lod 16 is one segment per heightfield texel for 513
+    // samples over a 32-patch grid (the book sizes its height map 4-8x its grid for this reason).
     static const SchemeInfo kInfo = {
         "interlock",
         "interlocking tiles: distance LOD of own + 4 neighbour midpoints, edge = min",
         "practical-d3d11-ch9: 9.1.1 GPU-Accelerated Interlocking Tiles, Listings 9.1, 9.2, 9.4-9.7",
-        {{"dmin", LB_INTERLOCK_DMIN, 100, 0, 100000, false, "distance at and below which a midpoint gets max_lod"},
-         {"dmax", LB_INTERLOCK_DMAX, 1500, 0, 100000, false, "distance at and beyond which a midpoint gets min_lod"},
+        {{"dmin", LB_INTERLOCK_DMIN, 0.1, 0, 8, false, "distance / terrain extent at and below which a midpoint gets max_lod"},
+         {"dmax", LB_INTERLOCK_DMAX, 1.5, 0, 8, false, "distance / terrain extent at and beyond which a midpoint gets min_lod"},
          {"min_lod", LB_INTERLOCK_MIN_LOD, 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
          {"max_lod", LB_INTERLOCK_MAX_LOD, 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
          {"cull", LB_INTERLOCK_CULL, 1, 0, 1, true, "1: per-patch frustum culling (not in the book); 0: draw every patch"}},

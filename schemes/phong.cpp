@@ -5,6 +5,10 @@
 // (harness/terrain/density_map.cpp); the evaluation shader (terrain_tri.tese) places vertices on the
 // Phong surface with shape factor alpha. fractional_odd, as in Figure 5-11.
 // Shader: shaders/phong.tesc.
+//
+// Scale-free as it stands: tri_size is in pixels, the frustum tolerance in longest triangle edges,
+// the back-face tolerance a cosine, alpha unitless and the density map's threshold and scale work
+// on range-normalised heights per sample (tests/test_scale.cpp checks it).
 #include "render/scheme.h"
 #include "shaders/phong_params.h"
 #include "terrain/density_map.h"

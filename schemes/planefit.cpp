@@ -5,6 +5,18 @@
 // (corner normals, lowest corner, inconsistent x/z scales, uncentred RMS); fit = 1 a least-squares
 // plane in world units with a centred deviation. Shaders: planefit.comp, planefit.tesc; CPU
 // reference: harness/terrain/plane_fit.cpp.
+//
+// Scale-free (the same picture at any world scale gets the same levels): dmin and dmax are
+// fractions of the terrain extent, as in the distance scheme (defaults 50 -> 0.05 and 1000 -> 1.0
+// of the 1000-unit terrain they were chosen on; the book prints no values). `roughness` is in the
+// fit's own units made scale-free: fit = 0 reads the book's deviation, which is already unitless
+// (heights normalised to the height range as the book's UNORM texture holds them, x and z in block
+// units); fit = 1's least-squares deviation is in world units, so the shader compares it with
+// roughness x extent. The extent, not the height range: the deviation matters through its
+// projected size, deviation / viewing distance, and viewing distances scale with the extent (the
+// paths and dmin/dmax are in extents); relative to the height range, doubling height_scale would
+// leave the weights unchanged although every deviation on screen doubles. The former lsq example
+// of 4 world units on the 1000-unit terrain is 0.004.
 #include <algorithm>
 #include <sstream>
 #include <string>
@@ -25,18 +37,16 @@ class PlaneFitScheme : public Scheme {
         "planefit",
         "distance LOD weighted by per-16x16-block coplanarity from a compute pre-pass",
         "practical-d3d11-ch9: 9.1.2 Pre-Processing the Height Map, Listings 9.10-9.16 (+ Listing 9.7)",
-        // Order matters: the shaders read parameters by index (distance_lod.glsl: 0-3, planefit.comp: 4,
-        // planefit.tesc: 5).
         {{"min_lod", LB_PLANEFIT_MIN_LOD, 1, 1, 64, false, "level of flat or distant patches (minMaxLOD.x)"},
          {"max_lod", LB_PLANEFIT_MAX_LOD, 32, 1, 64, false, "level of rough patches at dmin and nearer (minMaxLOD.y)"},
-         {"dmin", LB_PLANEFIT_DMIN, 50, 0, 1e6, false, "world distance of full distance LOD (minMaxDistance.x)"},
-         {"dmax", LB_PLANEFIT_DMAX, 1000, 0, 1e6, false, "world distance where the LOD reaches min_lod (minMaxDistance.y)"},
+         {"dmin", LB_PLANEFIT_DMIN, 0.05, 0, 8, false, "distance / terrain extent of full distance LOD (minMaxDistance.x)"},
+         {"dmax", LB_PLANEFIT_DMAX, 1.0, 0, 8, false, "distance / terrain extent where the LOD reaches min_lod (minMaxDistance.y)"},
          {"fit", LB_PLANEFIT_FIT, 0, 0, 1, true, "fit=book|lsq: 0 = the book's corner-normal plane, 1 = least-squares plane"},
          // The book's deviation is mostly the tilt of its nearly vertical plane (0.3-0.8 on the
-         // procedural terrains); the least-squares one is in world units (a few units there).
+         // procedural terrains); the least-squares one, divided by the extent, is ~0.001-0.02 there.
          {"roughness", LB_PLANEFIT_ROUGHNESS, 0.75, 1e-6, 1e6, false,
-          "block deviation earning the full distance LOD, in the fit's units (book: ~0.3-0.8; lsq: world units, e.g. "
-          "4)"}},
+          "block deviation earning the full distance LOD (fit=0: the book's unitless deviation, ~0.3-0.8; fit=1: "
+          "fraction of the terrain extent, e.g. 0.004)"}},
         Topology::Quad4,
         Partitioning::FractionalOdd,
         "planefit",

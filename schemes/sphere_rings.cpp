@@ -1,37 +1,58 @@
 // NVIDIA, "DirectX 11 Terrain Tessellation" (Cantlay 2011): "Non-Uniform Patch Sizes" through
 // "Advisability of Adjacent, Different-sized Patches" (TileRing, AssignNeighbourSizes), with the
-// LOD of "Hull Shader: Tessellation LOD". Concentric square rings of tiles, each ring's tiles twice
-// the size of the inner ring's, 8x8 patches per tile; per-tile adjacency scalars; the control
-// shader (shaders/sphere_rings.tesc) reconciles levels across ring boundaries.
+// LOD of "Hull Shader: Tessellation LOD" and the snapping of "Scrolling in Displacement Map
+// Generation". Concentric square rings of tiles, each ring's tiles twice the size of the inner
+// ring's, 8x8 patches per tile; per-tile adjacency scalars; the control shader
+// (shaders/sphere_rings.tesc) reconciles levels across ring boundaries.
 //
-// Layout: fixed, centred on the terrain's centre and built once at setScheme. The sample re-centres
-// the rings on the camera every frame; a fixed layout keeps the base mesh, culling bounds and
-// counters identical for any path, needs no per-frame renderer hook, and still shows every
-// boundary effect (cameras far from the centre see coarse rings near them: a known limitation).
-// Patches entirely outside the terrain are dropped; those overlapping its border sample the
-// clamped heightfield, as terrainHeight() does. The sample uses 16x16-tile rings; 8x8 keeps the
-// patch count lavapipe-sized (4096 + 3072 per further ring) with the same boundary structure.
-// Corners lie on a lattice of extent / 2^k when tile_size is 0 or 1/2^n, so for round extents
-// (1000) the shader's reconstruction p0 + (p0 - p1) of a larger neighbour's corner is bit-exact;
-// otherwise it can be an ulp off, the seed's first caveat under "Advisability".
+// The rings follow the LOD camera. The patch mesh is built once, in ring-local lattice units (one
+// unit = the innermost patch size, extent / grid, as every other scheme's patch): the ring lattice
+// is translation-invariant, so every frame update() writes a centre K (lattice units) that the
+// control shader adds to every corner. K is the LOD eye snapped to a multiple of the coarsest
+// *patch* size 2^(R-1), as the sample snaps its displacement map ("only moves in multiples of the
+// largest patch size"): every ring's corners then stay on that ring's fixed world lattice, so a
+// moving camera never makes vertices swim, and the camera is within half a coarsest patch of the
+// centre. (Snapping to the coarsest ring's *tile*, 8x coarser, would leave the camera up to half a
+// coarsest tile off centre: outside the finest ring from 5 rings on.) K is clamped to the terrain,
+// which the sample (an endless terrain) never needs: with `rings` at its default the outermost
+// ring then always covers the whole terrain (32 * 2^(R-1) >= grid), even from a camera beyond it.
+//
+// Patches outside the terrain: the sample draws an endless terrain, we draw one tile. A patch no
+// admissible centre brings over the terrain is never emitted; the others are culled per frame in
+// the control shader (factor 0, like a patch outside the frustum), so no geometry is drawn beyond
+// the terrain and the draw calls stay fixed (the seed's one draw per ring). Culling bounds come
+// from a per-ring pyramid of exact patch height bounds on the world lattice (rectHeightBounds, as
+// the uniform grid's), looked up at the patch's world lattice cell, so they move with the rings.
+// A patch overlapping the border (grid not a multiple of 2^(R-1)) samples the clamped heightfield.
+//
+// Corners are integers (lattice units) until the shader maps them to world x = (v + K) * extent /
+// grid, so the larger neighbour's corner the smaller patch reconstructs (p0 + (p0 - p1), Figure
+// 12) is exact for any extent and grid: the seed's first caveat under "Advisability" cannot bite.
+// The sample uses 16x16-tile rings; 8x8 keeps the patch count lavapipe-sized with the same
+// boundary structure.
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "error.h"
 #include "metrics/cracks.h"
 #include "render/patch_grid.h"
 #include "render/scheme.h"
+#include "schemes/sphere_rings_layout.h"
+#include "shaders/shared.h"
 #include "shaders/sphere_rings_params.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
+
 namespace {
 
 constexpr int kPatchesPerTile = 8;  // seed: 8x8 patches per tile
 constexpr int kRingTiles = 8;       // tiles across a ring; rings after the first have a 4x4-tile hole
 constexpr int kHoleLo = kRingTiles / 4, kHoleHi = kRingTiles * 3 / 4;
-constexpr int kFloatsPerPatch = 8;  // adjacency -x, -z, +x, +z; patch x, z in tile; ring; patch size
+constexpr long kRingHalf = kRingTiles * kPatchesPerTile / 2;  // ring 0's half-width in lattice units
 
 bool inHole(int ring, int tx, int tz) {
   return ring > 0 && tx >= kHoleLo && tx < kHoleHi && tz >= kHoleLo && tz < kHoleHi;
@@ -44,18 +65,80 @@ float neighbourSize(int ring, int rings, int tx, int tz) {
   return inHole(ring, tx, tz) ? 0.5f : 1.0f;
 }
 
+// The patch mesh; bounds pyramid only when asked (crack counting needs the topology alone).
+PatchGeometry buildRings(const Heightfield& hf, const ParamValues& v, int grid, bool withBounds) {
+  const int rings = ringCount(v, grid);
+  const long coarsest = 1L << (rings - 1), maxCentre = long(grid) / coarsest * coarsest;
+  PatchGeometry g;
+  std::map<std::pair<long, long>, uint32_t> vertexOf;
+  auto vertex = [&](long ix, long iz) {
+    auto [it, added] = vertexOf.try_emplace({ix, iz}, uint32_t(g.vertices.size()));
+    if (added) g.vertices.emplace_back(float(ix), float(iz));
+    return it->second;
+  };
+  // Scheme buffer: header (level offsets, patch base), then RingPatch records, then the pyramid.
+  std::vector<float> records;
+  long patches = 0;
+  for (int r = 0; r < rings; ++r) {
+    const long step = 1L << r;  // patch size in lattice units
+    const long origin = -kRingHalf * step;
+    for (int tz = 0; tz < kRingTiles; ++tz)
+      for (int tx = 0; tx < kRingTiles; ++tx) {
+        if (inHole(r, tx, tz)) continue;
+        float adj[4] = {neighbourSize(r, rings, tx - 1, tz), neighbourSize(r, rings, tx, tz - 1),
+                        neighbourSize(r, rings, tx + 1, tz), neighbourSize(r, rings, tx, tz + 1)};
+        for (int pz = 0; pz < kPatchesPerTile; ++pz)
+          for (int px = 0; px < kPatchesPerTile; ++px) {
+            long ix = origin + (tx * kPatchesPerTile + px) * step, iz = origin + (tz * kPatchesPerTile + pz) * step;
+            // World span [ix + K, ix + step + K) for K in [0, maxCentre]: never over [0, grid)?
+            auto never = [&](long i) { return i >= grid || i + step + maxCentre <= 0; };
+            if (never(ix) || never(iz)) continue;
+            g.indices.insert(g.indices.end(), {vertex(ix, iz), vertex(ix + step, iz), vertex(ix + step, iz + step),
+                                               vertex(ix, iz + step)});
+            records.insert(records.end(), {adj[0], adj[1], adj[2], adj[3], float(px), float(pz), float(r), 0.0f});
+            ++patches;
+          }
+      }
+  }
+  static_assert(kRingFloatsPerPatch == 8, "matches RingPatch in shaders/sphere_rings.tesc");
+  // Culling bounds per ring level on the world lattice; the renderer's own bounds are unused.
+  g.bounds.assign(size_t(patches), glm::vec2(hf.minHeight, hf.maxHeight));
+  // Offsets in vec2 units (the shader reads the buffer as vec2[]); every block has an even size.
+  g.schemeBuffer.assign(kRingHeaderFloats, 0.0f);
+  g.schemeBuffer[kRingMaxLevels] = float(kRingHeaderFloats / 2);
+  g.schemeBuffer.insert(g.schemeBuffer.end(), records.begin(), records.end());
+  if (!withBounds) return g;
+  const double unit = double(hf.extent) / grid;
+  for (int r = 0; r < rings; ++r) {
+    const long n = ringLatticeSize(grid, r), step = 1L << r;
+    g.schemeBuffer[size_t(r)] = float(g.schemeBuffer.size() / 2);
+    for (long j = 0; j < n; ++j)
+      for (long i = 0; i < n; ++i) {
+        glm::vec2 lo(float(i * step * unit), float(j * step * unit));
+        glm::vec2 hi(float((i + 1) * step * unit), float((j + 1) * step * unit));
+        glm::vec2 b = rectHeightBounds(hf, lo, hi);
+        g.schemeBuffer.insert(g.schemeBuffer.end(), {b.x, b.y});
+      }
+  }
+  return g;
+}
+
 class SphereRings : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
         "sphere-rings",
-        "sphere LOD on concentric tile rings doubling in size, crack-free across ring boundaries",
+        "sphere LOD on concentric tile rings doubling in size around the LOD camera, crack-free across ring boundaries",
         "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
-        "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches",
-        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"},
-         {"rings", LB_SPHERE_RINGS_RINGS, 4, 1, 8, true, "number of tile rings (8x8 tiles each, inner 4x4 hole after the first)"},
-         {"tile_size", LB_SPHERE_RINGS_TILE_SIZE, 0, 0, 1, false, "innermost tile size / extent; 0 = the outer ring just covers the terrain"},
-         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true, "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
+        "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement Map "
+        "Generation (snapping)",
+        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
+          "target triangle width in pixels (g_tessellatedTriSize)"},
+         {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
+          "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
+          "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
+         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
+          "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
         Topology::Quad4,
         Partitioning::FractionalEven,
         "sphere_rings",
@@ -65,55 +148,56 @@ class SphereRings : public Scheme {
     return kInfo;
   }
 
-  PatchGeometry patchGeometry(const Heightfield& hf, const ParamValues& v) const override {
-    const int rings = int(v.at("rings"));
-    // Fit: ring r spans kRingTiles * tile * 2^r; the outermost one spans the extent.
-    double tile0 =
-        v.at("tile_size") > 0 ? v.at("tile_size") * hf.extent : hf.extent / (kRingTiles * std::ldexp(1.0, rings - 1));
-    if (tile0 < hf.extent / 4096.0) throw InputError("sphere-rings: tile_size must be 0 (fit) or >= 1/4096");
-    // Corners on a lattice of the finest patch size, centred on the terrain: shared corners get
-    // one vertex, so neighbours see bit-identical end points.
-    const double unit = tile0 / kPatchesPerTile, centre = 0.5 * hf.extent;
-    PatchGeometry g;
-    std::map<std::pair<long, long>, uint32_t> vertexOf;
-    auto vertex = [&](long ix, long iz) {
-      auto [it, added] = vertexOf.try_emplace({ix, iz}, uint32_t(g.vertices.size()));
-      if (added) g.vertices.emplace_back(float(centre + ix * unit), float(centre + iz * unit));
-      return it->second;
-    };
-    for (int r = 0; r < rings; ++r) {
-      const long step = 1L << r;  // patch size in lattice units
-      const long origin = -long(kRingTiles / 2 * kPatchesPerTile) * step;
-      for (int tz = 0; tz < kRingTiles; ++tz)
-        for (int tx = 0; tx < kRingTiles; ++tx) {
-          if (inHole(r, tx, tz)) continue;
-          float adj[4] = {neighbourSize(r, rings, tx - 1, tz), neighbourSize(r, rings, tx, tz - 1),
-                          neighbourSize(r, rings, tx + 1, tz), neighbourSize(r, rings, tx, tz + 1)};
-          for (int pz = 0; pz < kPatchesPerTile; ++pz)
-            for (int px = 0; px < kPatchesPerTile; ++px) {
-              long ix = origin + (tx * kPatchesPerTile + px) * step, iz = origin + (tz * kPatchesPerTile + pz) * step;
-              glm::vec2 lo(float(centre + ix * unit), float(centre + iz * unit));
-              glm::vec2 hi(float(centre + (ix + step) * unit), float(centre + (iz + step) * unit));
-              if (hi.x <= 0 || hi.y <= 0 || lo.x >= hf.extent || lo.y >= hf.extent) continue;
-              g.indices.insert(g.indices.end(), {vertex(ix, iz), vertex(ix + step, iz), vertex(ix + step, iz + step),
-                                                 vertex(ix, iz + step)});
-              g.bounds.push_back(rectHeightBounds(hf, lo, hi));
-              g.schemeBuffer.insert(g.schemeBuffer.end(), {adj[0], adj[1], adj[2], adj[3], float(px), float(pz),
-                                                           float(r), float(step * unit)});
-            }
-        }
-    }
-    static_assert(kFloatsPerPatch == 8, "matches RingPatch in shaders/sphere_rings.tesc");
-    return g;
+  PatchGeometry patchGeometry(const Heightfield& hf, const ParamValues& v, int grid) const override {
+    return buildRings(hf, v, grid, true);
   }
 
-  // Ring boundaries are T-junctions: the grid rule does not apply; compare vertex patterns.
-  long crackEdges(const Heightfield& hf, const ParamValues& v, const std::vector<float>& levels) const override {
-    return layoutCrackEdges(patchGeometry(hf, v), levels);
+  // Per frame: the ring centre, from the LOD eye (frame.lodEye) and terrain (frame.terrain).
+  void update(FrameUniforms& frame, const ParamValues& values) const override {
+    Scheme::update(frame, values);
+    const int grid = int(frame.terrain.y);
+    glm::ivec2 k(0);
+    if (grid > 0 && frame.terrain.x > 0)
+      k = ringCentre(glm::dvec2(frame.lodEye.x, frame.lodEye.z), frame.terrain.x, grid, ringCount(values, grid));
+    frame.params[LB_SPHERE_RINGS_CENTRE_X / 4][LB_SPHERE_RINGS_CENTRE_X % 4] = float(k.x);
+    frame.params[LB_SPHERE_RINGS_CENTRE_Z / 4][LB_SPHERE_RINGS_CENTRE_Z % 4] = float(k.y);
+  }
+
+  // Ring boundaries are T-junctions: the grid rule does not apply; compare vertex patterns. The
+  // layout is translation-invariant, so the local mesh has the topology of every frame's; patches
+  // off the terrain that frame were culled (levels 0) and do not count.
+  long crackEdges(const Heightfield& hf, const ParamValues& v, int grid,
+                  const std::vector<float>& levels) const override {
+    return layoutCrackEdges(buildRings(hf, v, grid, false), levels);
   }
 };
 
 }  // namespace
+
+int ringCount(const ParamValues& v, int grid) {
+  int needed = 1;
+  while ((kRingHalf << (needed - 1)) < grid) ++needed;
+  const int rings = int(v.at("rings"));
+  if (rings == 0) return needed;
+  if (rings < needed)
+    throw InputError("sphere-rings: rings = " + std::to_string(rings) +
+                     " leaves part of the terrain uncovered at grid " + std::to_string(grid) +
+                     " (needs >= " + std::to_string(needed) + ", or 0 for that)");
+  return rings;
+}
+
+glm::ivec2 ringCentre(glm::dvec2 eyeXZ, double extent, int grid, int rings) {
+  const long coarsest = 1L << (rings - 1), maxCentre = long(grid) / coarsest * coarsest;
+  auto snap = [&](double world) {
+    double cells = std::round(world / extent * grid / double(coarsest));
+    return int(std::clamp(long(std::clamp(cells, -1e9, 1e9)) * coarsest, 0L, maxCentre));
+  };
+  return {snap(eyeXZ.x), snap(eyeXZ.y)};
+}
+
+long ringLatticeSize(int grid, int ring) {
+  return (long(grid) + (1L << ring) - 1) >> ring;
+}
 
 const Scheme& sphereRingsScheme() {
   static const SphereRings scheme;

@@ -4,9 +4,10 @@
 
 #include "distance_params.h"
 
-// 0 at dmin and nearer, 1 at dmax and farther, from the LOD camera.
+// 0 at dmin and nearer, 1 at dmax and farther, from the LOD camera. dmin and dmax are fractions
+// of the terrain extent (schemes/distance.cpp), so the distance is measured in extents too.
 float scaledDistance(vec3 p) {
-  float d = distance(frame.lodEye.xyz, p);
+  float d = distance(frame.lodEye.xyz, p) / terrainExtent();
   return clamp((d - schemeParam(LB_DISTANCE_DMIN)) / (schemeParam(LB_DISTANCE_DMAX) - schemeParam(LB_DISTANCE_DMIN)), 0.0, 1.0);
 }
 

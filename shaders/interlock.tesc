@@ -23,12 +23,13 @@ vec3 cellMidpoint(vec3 p00, vec3 p10, vec3 p11, vec3 p01) {
 }
 
 // Listing 9.7 (ComputeScaledDistance + ComputePatchLOD), with the clamping the text describes.
-// Distance written out (no dot/distance builtins) so every operation is covered by `precise`.
+// Distance written out (no dot/distance builtins) so every operation is covered by `precise`; in
+// terrain extents, the unit of dmin and dmax (schemes/interlock.cpp).
 float cellLod(vec3 midpoint) {
   float minDistance = schemeParam(LB_INTERLOCK_DMIN), maxDistance = schemeParam(LB_INTERLOCK_DMAX);
   float minLod = schemeParam(LB_INTERLOCK_MIN_LOD), maxLod = schemeParam(LB_INTERLOCK_MAX_LOD);
   precise vec3 d = midpoint - frame.lodEye.xyz;
-  precise float dist = sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
+  precise float dist = sqrt((d.x * d.x + d.y * d.y) + d.z * d.z) / terrainExtent();
   // dmin >= dmax degenerates to a step at dmin instead of dividing by 0.
   precise float scaled = clamp((dist - minDistance) / max(maxDistance - minDistance, 1e-6), 0.0, 1.0);
   precise float lod = minLod + (1.0 - scaled) * (maxLod - minLod);  // HLSL lerp(minLod, maxLod, 1 - d)

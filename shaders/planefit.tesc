@@ -4,7 +4,9 @@
 // that shaders/planefit.comp wrote (Listings 9.10-9.16). The book prints no hull shader for this
 // step ("the exact weightings and biases can be easily tweaked"); here the distance term is
 // multiplied by saturate(deviation / roughness), so a flat block gets min_lod even close by
-// (Figure 9.23) and a block as rough as `roughness` gets the full distance LOD.
+// (Figure 9.23) and a block as rough as `roughness` gets the full distance LOD. fit = 1's deviation
+// is in world units: compared with roughness x extent, so the weight is scale-free
+// (schemes/planefit.cpp argues the extent).
 // Crack-free: an edge's factor depends only on the edge (its midpoint, the blocks along it).
 #include "common.glsl"
 #include "planefit_params.h"
@@ -39,7 +41,8 @@ float roughness(ivec2 g0, ivec2 g1) {
 }
 
 float weightedLod(vec3 p, ivec2 g0, ivec2 g1) {
-  float weight = clamp(roughness(g0, g1) / schemeParam(LB_PLANEFIT_ROUGHNESS), 0.0, 1.0);
+  float unit = schemeParam(LB_PLANEFIT_FIT) > 0.5 ? terrainExtent() : 1.0;
+  float weight = clamp(roughness(g0, g1) / (schemeParam(LB_PLANEFIT_ROUGHNESS) * unit), 0.0, 1.0);
   return mix(schemeParam(LB_PLANEFIT_MIN_LOD), schemeParam(LB_PLANEFIT_MAX_LOD), (1.0 - scaledDistance(p)) * weight);
 }
 

@@ -1,5 +1,6 @@
 // distance scheme (ch9 Listing 9.7): captured factors equal lerp(min_lod, max_lod, 1 - saturate(
-// (d - dmin) / (dmax - dmin))) computed on the CPU from the same patch and edge midpoints.
+// (d - dmin) / (dmax - dmin))) computed on the CPU from the same patch and edge midpoints, with d,
+// dmin and dmax in terrain extents.
 #include <algorithm>
 #include <cmath>
 
@@ -16,12 +17,12 @@ using lbtest::testTerrain;
 namespace {
 
 constexpr int kGrid = 8;
-constexpr double kMinLod = 2, kMaxLod = 40, kDmin = 50, kDmax = 400;
+constexpr double kMinLod = 2, kMaxLod = 40, kDmin = 0.05, kDmax = 0.4;  // extents
 const ParamValues kParams = {{"min_lod", kMinLod}, {"max_lod", kMaxLod}, {"dmin", kDmin}, {"dmax", kDmax}};
 
 // Listing 9.7 in double precision.
 double listingLod(glm::dvec3 eye, glm::dvec3 p) {
-  double s = std::clamp((glm::distance(eye, p) - kDmin) / (kDmax - kDmin), 0.0, 1.0);
+  double s = std::clamp((glm::distance(eye, p) / testTerrain().extent - kDmin) / (kDmax - kDmin), 0.0, 1.0);
   return kMinLod + (kMaxLod - kMinLod) * (1.0 - s);
 }
 
@@ -60,7 +61,7 @@ class DistanceScheme : public lbtest::GpuTest {
           for (int k = 0; k < 6; ++k) EXPECT_EQ(l[k], 0.0f);
           continue;
         }
-        double d = glm::distance(e, patchMid(i, j));
+        double d = glm::distance(e, patchMid(i, j)) / testTerrain().extent;
         *nearCount += d < kDmin;
         *farCount += d > kDmax;
         double inner = listingLod(e, patchMid(i, j));
@@ -81,7 +82,7 @@ class DistanceScheme : public lbtest::GpuTest {
 
 TEST_F(DistanceScheme, NearerThanDminIsMaxLodFartherThanDmaxIsMinLod) {
   int nearCount, farCount;
-  // 30 units above patch (2,2)'s midpoint: d = 30 < dmin there.
+  // 30 units above patch (2,2)'s midpoint: d = 0.03 extents < dmin there.
   auto lv = checkFrom(2, 2, 30.0f, &nearCount, &farCount);
   const float* p = &lv[size_t(2 * kGrid + 2) * LB_CAPTURE_STRIDE];
   EXPECT_FLOAT_EQ(p[4], float(kMaxLod));
@@ -97,14 +98,14 @@ TEST_F(DistanceScheme, NearerThanDminIsMaxLodFartherThanDmaxIsMinLod) {
 TEST_F(DistanceScheme, HalfwayBetweenDminAndDmaxIsMidLevel) {
   int nearCount, farCount;
   // d = (dmin + dmax) / 2 -> saturate term 0.5 -> level (min_lod + max_lod) / 2 = 21.
-  auto lv = checkFrom(3, 1, float(0.5 * (kDmin + kDmax)), &nearCount, &farCount);
+  auto lv = checkFrom(3, 1, float(0.5 * (kDmin + kDmax) * testTerrain().extent), &nearCount, &farCount);
   EXPECT_NEAR(lv[size_t(1 * kGrid + 3) * LB_CAPTURE_STRIDE + 4], 0.5 * (kMinLod + kMaxLod), 1e-4 * 21);
   EXPECT_EQ(nearCount, 0);
 }
 
 TEST_F(DistanceScheme, SharedEdgesGetIdenticalLevels) {
   Renderer r(gpu(), testTerrain(), {160, 90, 16});
-  r.setScheme(*findScheme("distance"), {{"dmin", 50}, {"dmax", 2000}});  // most patches between the two
+  r.setScheme(*findScheme("distance"), {{"dmin", 0.05}, {"dmax", 2}});  // most patches between the two
   auto pose = lbtest::poseAt({-100, 250, -100}, {500, 0, 500});
   r.renderImage(pose, pose, RenderMode::Shaded);
   auto lv = r.capturedLevels();
@@ -129,12 +130,14 @@ TEST_F(DistanceScheme, SharedEdgesGetIdenticalLevels) {
 TEST_F(DistanceScheme, RejectsInvertedRanges) {
   Renderer r(gpu(), testTerrain(), {64, 64, 2});
   const Scheme& s = *findScheme("distance");
-  EXPECT_THROW(r.setScheme(s, {{"dmin", 500}, {"dmax", 500}}), InputError);
-  EXPECT_THROW(r.setScheme(s, {{"dmin", 600}, {"dmax", 100}}), InputError);
+  EXPECT_THROW(r.setScheme(s, {{"dmin", 0.5}, {"dmax", 0.5}}), InputError);
+  EXPECT_THROW(r.setScheme(s, {{"dmin", 0.6}, {"dmax", 0.1}}), InputError);
+  // World-unit distances of the former parameters are out of range, not silently saturated.
+  EXPECT_THROW(r.setScheme(s, {{"dmin", 50}, {"dmax", 1000}}), InputError);
   EXPECT_THROW(r.setScheme(s, {{"min_lod", 20}, {"max_lod", 10}}), InputError);
   EXPECT_THROW(r.setScheme(s, {{"max_lod", 65}}), InputError);
   try {
-    s.validate(resolveParams(s.info(), {{"dmin", 500}, {"dmax", 100}}));
+    s.validate(resolveParams(s.info(), {{"dmin", 0.5}, {"dmax", 0.1}}));
     ADD_FAILURE() << "dmax < dmin accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dmax"), std::string::npos) << e.what();
@@ -145,10 +148,10 @@ TEST_F(DistanceScheme, RejectsInvertedRanges) {
 // Config files reach the same cross-parameter check, naming the scheme's params object.
 TEST(DistanceConfig, InvertedRangeInAConfigIsAnInputError) {
   const std::string text = R"({"name": "t", "paths": ["paths/flyover.csv"],
-    "schemes": [{"name": "distance", "params": {"dmin": [100, 900], "dmax": 800}}]})";
+    "schemes": [{"name": "distance", "params": {"dmin": [0.1, 0.9], "dmax": 0.8}}]})";
   try {
     parseConfig(text, "t.json", LODBENCH_SOURCE_DIR "/configs");
-    ADD_FAILURE() << "dmin 900 > dmax 800 accepted";
+    ADD_FAILURE() << "dmin 0.9 > dmax 0.8 accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/schemes/0/params"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("dmax"), std::string::npos) << e.what();

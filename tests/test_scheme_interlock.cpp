@@ -41,14 +41,14 @@ glm::dvec3 cellMidpoint(int ci, int cj, int n) {
          4.0;
 }
 
-struct LodParams {
-  double minDistance = 100, maxDistance = 1500, minLod = 1, maxLod = 16;
+struct LodParams {  // distances in terrain extents, as the scheme's dmin and dmax
+  double minDistance = 0.1, maxDistance = 1.5, minLod = 1, maxLod = 16;
 };
 
 // Listing 9.7 in double precision: the reference the GPU's float result must be close to.
 double referenceLod(const glm::dvec3& mid, const glm::vec3& eye, const LodParams& p) {
-  double s =
-      std::clamp((glm::distance(mid, glm::dvec3(eye)) - p.minDistance) / (p.maxDistance - p.minDistance), 0.0, 1.0);
+  double d = glm::distance(mid, glm::dvec3(eye)) / testTerrain().extent;
+  double s = std::clamp((d - p.minDistance) / (p.maxDistance - p.minDistance), 0.0, 1.0);
   return p.minLod + (1.0 - s) * (p.maxLod - p.minLod);
 }
 
@@ -127,8 +127,8 @@ TEST_F(InterlockScheme, SharedEdgesBitIdenticalOnShippedPathsWithoutCulling) {
 TEST_F(InterlockScheme, SharedEdgesBitIdenticalWithCullingAndOtherRanges) {
   const int n = 16;
   Renderer r(gpu(), testTerrain(), {160, 90, n});
-  const LodParams wide{0, 800, 2, 64};
-  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 800}, {"min_lod", 2}, {"max_lod", 64}});
+  const LodParams wide{0, 0.8, 2, 64};
+  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 0.8}, {"min_lod", 2}, {"max_lod", 64}});
   int culledFrames = 0;
   for (const CameraPose& pose : shippedPathPoses()) {
     auto lv = captureLevels(r, pose);
@@ -159,7 +159,8 @@ TEST_F(InterlockScheme, LowerNeighbourLandsOnTheOuterLevelFacingIt) {
         nearMax = std::max(nearMax, d);
     }
     ASSERT_GT(far, nearMax + 10.0) << "side " << side << ": the set-up needs one clearly farther neighbour";
-    LodParams p{(nearMax + far) / 2, (nearMax + far) / 2 + 1000, 1, 16};
+    const double extent = testTerrain().extent;
+    LodParams p{(nearMax + far) / 2 / extent, (nearMax + far) / 2 / extent + 1, 1, 16};
     r.setScheme(*findScheme("interlock"), {{"dmin", p.minDistance},
                                            {"dmax", p.maxDistance},
                                            {"min_lod", 1},
@@ -220,7 +221,7 @@ int enclosedClearPixels(const std::vector<uint8_t>& px, int w, int h) {
 TEST_F(InterlockScheme, NoCracksInShadedImages) {
   const int n = 16, w = 320, h = 180;
   Renderer r(gpu(), testTerrain(), {w, h, n});
-  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 700}, {"max_lod", 9}});
+  r.setScheme(*findScheme("interlock"), {{"dmin", 0}, {"dmax", 0.7}, {"max_lod", 9}});
   for (const CameraPose& pose : shippedPathPoses()) {
     auto px = r.renderImage(pose, pose, RenderMode::Shaded);
     EXPECT_EQ(enclosedClearPixels(px, w, h), 0);
@@ -241,7 +242,7 @@ TEST_F(InterlockScheme, DrawsNeverRestartPrimitiveIds) {
   auto pose = lbtest::poseAt({-100, 300, 200}, {500, 0, 500});
   auto lv = captureLevels(r, pose);
   for (int p = 0; p < n * n; ++p)
-    ASSERT_NEAR(lv[size_t(p) * kStride + 4], referenceLod(cellMidpoint(p % n, p / n, n), pose.eye, {100, 1500, 1, 4}),
+    ASSERT_NEAR(lv[size_t(p) * kStride + 4], referenceLod(cellMidpoint(p % n, p / n, n), pose.eye, {0.1, 1.5, 1, 4}),
                 1e-3)
         << "patch " << p;
 }

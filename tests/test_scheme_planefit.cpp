@@ -114,11 +114,13 @@ std::pair<int, int> blockSpan(int g0, int g1, int samples, int blocks, int n) {
 class PlaneFitLevels : public lbtest::GpuTest, public ::testing::WithParamInterface<int> {};
 
 // Every drawn patch: level = lerp(min_lod, max_lod, (1 - saturate((d - dmin) / (dmax - dmin))) *
-// saturate(max block deviation / roughness)) at the patch and edge midpoints; shared edges agree.
+// saturate(max block deviation / (roughness x extent))) at the patch and edge midpoints (d, dmin,
+// dmax in extents; the lsq deviation in world units); shared edges agree.
 TEST_P(PlaneFitLevels, FactorsAreWeightedDistanceLod) {
   const int n = GetParam();  // 8: patches aligned with the 16-sample blocks; 6: not aligned
-  // roughness above every block deviation of the test terrain (max 16.5 world units): every weight < 1.
-  const double minLod = 2, maxLod = 40, dmin = 50, dmax = 900, roughness = 20;
+  // roughness above every block deviation of the test terrain (max 16.5 world units of 1000): every weight < 1.
+  const double minLod = 2, maxLod = 40, dmin = 0.05, dmax = 0.9, roughness = 0.02;
+  const double extent = testTerrain().extent;
   Renderer r(gpu(), testTerrain(), {160, 90, n});
   r.setScheme(
       *findScheme("planefit"),
@@ -141,8 +143,8 @@ TEST_P(PlaneFitLevels, FactorsAreWeightedDistanceLod) {
     for (int z = bz.first; z <= bz.second; ++z)
       for (int x = bx.first; x <= bx.second; ++x)
         dev = std::max(dev, double(tex.rgba[size_t(z * tex.width + x) * 4 + 3]));
-    double s = std::clamp((glm::distance(glm::dvec3(eye), p) - dmin) / (dmax - dmin), 0.0, 1.0);
-    return minLod + (maxLod - minLod) * (1 - s) * std::clamp(dev / roughness, 0.0, 1.0);
+    double s = std::clamp((glm::distance(glm::dvec3(eye), p) / extent - dmin) / (dmax - dmin), 0.0, 1.0);
+    return minLod + (maxLod - minLod) * (1 - s) * std::clamp(dev / (roughness * extent), 0.0, 1.0);
   };
   int drawn = 0, belowDistanceLod = 0;
   for (int j = 0; j < n; ++j)
@@ -160,7 +162,7 @@ TEST_P(PlaneFitLevels, FactorsAreWeightedDistanceLod) {
       EXPECT_NEAR(l[2], level(0.5 * (c1 + c2), c + glm::ivec2(1, 0), c + 1), 1e-4 * inner) << i << "," << j;
       EXPECT_NEAR(l[3], level(0.5 * (c3 + c2), c + glm::ivec2(0, 1), c + 1), 1e-4 * inner) << i << "," << j;
       double s =
-          std::clamp((glm::distance(glm::dvec3(eye), (c0 + c1 + c2 + c3) * 0.25) - dmin) / (dmax - dmin), 0., 1.);
+          std::clamp((glm::distance(glm::dvec3(eye), (c0 + c1 + c2 + c3) * 0.25) / extent - dmin) / (dmax - dmin), 0., 1.);
       belowDistanceLod += inner < minLod + (maxLod - minLod) * (1 - s) - 1e-3;  // the weight lowered it
       if (i + 1 < n && lv[size_t(j * n + i + 1) * LB_CAPTURE_STRIDE + 4] > 0) {
         EXPECT_EQ(l[2], lv[size_t(j * n + i + 1) * LB_CAPTURE_STRIDE + 0]) << "crack at u=1 of " << i << "," << j;
@@ -194,7 +196,7 @@ TEST_F(PlaneFitScheme, FlatTerrainGetsMinLodEvenUpClose) {
 
 TEST_F(PlaneFitScheme, RejectsInvertedDistanceRange) {
   Renderer r(gpu(), testTerrain(), {64, 64, 2});
-  EXPECT_THROW(r.setScheme(*findScheme("planefit"), {{"dmin", 300}, {"dmax", 200}}), InputError);
+  EXPECT_THROW(r.setScheme(*findScheme("planefit"), {{"dmin", 0.3}, {"dmax", 0.2}}), InputError);
   EXPECT_THROW(r.setScheme(*findScheme("planefit"), {{"fit", 0.5}}), InputError);
   EXPECT_THROW(r.setScheme(*findScheme("planefit"), {{"fit", 2}}), InputError);
 }

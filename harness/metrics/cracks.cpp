@@ -62,7 +62,7 @@ long layoutCrackEdges(const PatchGeometry& geometry, const std::vector<float>& l
 
 long analyticCracks(const Scheme& scheme, const ParamValues& params, const Heightfield& terrain, int grid,
                     const std::vector<float>& levels) {
-  long own = scheme.crackEdges(terrain, params, levels);
+  long own = scheme.crackEdges(terrain, params, grid, levels);
   return own >= 0 ? own : gridCrackEdges(scheme.info().topology, grid, levels);
 }
 

@@ -101,7 +101,7 @@ void Renderer::createGrid() {
   for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_}) destroyBuffer(ctx_, *b);
   Topology topo = scheme_->info().topology;
   controlPoints_ = controlPointCount(topo);
-  PatchGeometry g = scheme_->patchGeometry(terrain_, params_);
+  PatchGeometry g = scheme_->patchGeometry(terrain_, params_, settings_.grid);
   if (g.vertices.empty()) {
     g.vertices = gridVertices(settings_.grid, terrain_.extent);
     g.indices = patchIndices(settings_.grid, topo);

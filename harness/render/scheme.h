@@ -51,7 +51,7 @@ struct SchemeTexture {
 // Optional base mesh a scheme supplies instead of the renderer's uniform N x N grid (non-uniform
 // patch sizes). Patch p uses indices [p * controlPointCount(topology), ...) in this order.
 struct PatchGeometry {
-  std::vector<glm::vec2> vertices;  // world x, z
+  std::vector<glm::vec2> vertices;  // world x, z (or units the scheme's control shader maps to world: sphere-rings)
   std::vector<uint32_t> indices;    // control points of every patch, patch after patch
   std::vector<glm::vec2> bounds;    // per patch (minHeight, maxHeight) for the control shader's culling
   std::vector<float> schemeBuffer;  // optional; bound at LB_BINDING_SCHEME_BUF as std430 floats
@@ -69,8 +69,9 @@ class Scheme {
   virtual float maxLevel(const ParamValues&) const { return 64.0f; }
   // Load-time preprocessing on the CPU; empty texture when the scheme needs none.
   virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
-  // Load-time patch layout; no vertices = the renderer's uniform grid (RenderSettings::grid).
-  virtual PatchGeometry patchGeometry(const Heightfield&, const ParamValues&) const { return {}; }
+  // Load-time patch layout; no vertices = the renderer's uniform grid. `grid` is
+  // RenderSettings::grid, so a scheme's own layout can size its finest patch as extent / grid.
+  virtual PatchGeometry patchGeometry(const Heightfield&, const ParamValues&, int /*grid*/) const { return {}; }
   // Size of the texture SchemeInfo::compute writes; the pass runs one workgroup per texel.
   virtual TextureSize computeOutputSize(const Heightfield&) const { return {}; }
   // Checks between parameters that ParamSpec ranges cannot express; throws InputError.
@@ -79,12 +80,13 @@ class Scheme {
   // Target triangle area in px^2 for screen-space schemes, 0 when the scheme has none. Default:
   // a `tri_size` parameter t (target triangle width) gives t^2 / 2 (NVIDIA: size 6 -> 18 px).
   virtual double targetAreaPx(const ParamValues& values) const;
-  // Per-frame CPU work: packs parameters into the uniform block (override for more).
+  // Per-frame CPU work: packs parameters into the uniform block (override for more: `frame`
+  // already holds the frame's cameras and terrain, e.g. sphere-rings centres its rings on lodEye).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
   // Analytic crack count (metrics/cracks.h) for a scheme with its own patchGeometry: shared edges
   // between drawn patches whose captured levels (LB_CAPTURE_STRIDE floats per patch) leave the two
   // sides with different vertices. -1 = the renderer's uniform grid rule applies.
-  virtual long crackEdges(const Heightfield&, const ParamValues&, const std::vector<float>& /*levels*/) const {
+  virtual long crackEdges(const Heightfield&, const ParamValues&, int /*grid*/, const std::vector<float>& /*levels*/) const {
     return -1;
   }
 };
