@@ -23,10 +23,10 @@ struct Interval {
   double t0, t1;
 };
 
-// Parameter interval of o + t d inside [lo, hi] along one axis; empty when t0 > t1.
-Interval slab(double lo, double hi, double o, double d) {
+// Parameter interval of o + t d inside [lo, hi] along one axis (inv = 1 / d); empty when t0 > t1.
+Interval slab(double lo, double hi, double o, double d, double inv) {
   if (d == 0) return o >= lo && o <= hi ? Interval{-kInf, kInf} : Interval{kInf, -kInf};
-  double a = (lo - o) / d, b = (hi - o) / d;
+  double a = (lo - o) * inv, b = (hi - o) * inv;
   return a < b ? Interval{a, b} : Interval{b, a};
 }
 
@@ -87,6 +87,7 @@ RayHit castRay(const Heightfield& hf, const MaxMipmap& mip, glm::dvec3 o, glm::d
   RayHit hit;
   const int cellsX = mip.levels[0].w, cellsZ = mip.levels[0].h;
   const double cw = double(hf.extent) / double(cellsX), ch = double(hf.extent) / double(cellsZ);
+  const double invX = d.x != 0 ? 1.0 / d.x : 0.0, invZ = d.z != 0 ? 1.0 / d.z : 0.0;
   struct Node {
     int level, ix, iz;
     double t0, t1;
@@ -97,8 +98,8 @@ RayHit castRay(const Heightfield& hf, const MaxMipmap& mip, glm::dvec3 o, glm::d
     const MaxMipmap::Level& l = mip.levels[size_t(level)];
     if (ix >= l.w || iz >= l.h) return false;
     int s = 1 << level;
-    Interval x = slab(ix * s * cw, std::min((ix + 1) * s, cellsX) * cw, o.x, d.x);
-    Interval z = slab(iz * s * ch, std::min((iz + 1) * s, cellsZ) * ch, o.z, d.z);
+    Interval x = slab(ix * s * cw, std::min((ix + 1) * s, cellsX) * cw, o.x, d.x, invX);
+    Interval z = slab(iz * s * ch, std::min((iz + 1) * s, cellsZ) * ch, o.z, d.z, invZ);
     n = {level, ix, iz, std::max({tMin, x.t0, z.t0}), std::min({tMax, x.t1, z.t1})};
     if (n.t0 > n.t1 + kEps) return false;
     double yLow = std::min(o.y + n.t0 * d.y, o.y + n.t1 * d.y);
@@ -113,8 +114,9 @@ RayHit castRay(const Heightfield& hf, const MaxMipmap& mip, glm::dvec3 o, glm::d
     if (n.level == 0) {
       // Bilinear cell: H(u, v) = a + b u + c v + e u v with u, v linear in the ray parameter.
       const double x0 = n.ix * cw, z0 = n.iz * ch;
-      const double h00 = hf.at(n.ix, n.iz), h10 = hf.at(n.ix + 1, n.iz);
-      const double h01 = hf.at(n.ix, n.iz + 1), h11 = hf.at(n.ix + 1, n.iz + 1);
+      // Cells exist only where all four corners do: no clamping needed.
+      const float* row = hf.h.data() + size_t(n.iz) * size_t(hf.width) + size_t(n.ix);
+      const double h00 = row[0], h10 = row[1], h01 = row[hf.width], h11 = row[hf.width + 1];
       const double a = h00, b = h10 - h00, c = h01 - h00, e = h00 - h10 - h01 + h11;
       const double u0 = (o.x + n.t0 * d.x - x0) / cw, du = d.x / cw;
       const double v0 = (o.z + n.t0 * d.z - z0) / ch, dv = d.z / ch;
