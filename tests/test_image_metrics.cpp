@@ -1,9 +1,13 @@
-// Image metrics on synthetic images with known answers.
+// Image metrics on synthetic images with known answers, and the ground truth they compare against.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
+#include "metrics/raycast.h"
 
 using namespace lb;
 
@@ -83,4 +87,118 @@ TEST(ImageMetrics, CrackPixelsFindHolesNotSilhouettes) {
   for (int y = 8; y < 20; ++y) setPx(img, 4, y, 255, 0, 255);
   EXPECT_EQ(crackPixels(img, ref), 0);
   EXPECT_EQ(crackPixels(ref, ref), 0);
+}
+
+// ---- Ground truth (issue 9 item 3): the tessellated `reference` scheme against the ray cast of
+// the true heightfield (metrics/raycast.h), which image metrics now compare against.
+
+namespace {
+
+lb::Heightfield quickTerrain() {  // configs/quick.json's terrain
+  lb::TerrainSpec s;
+  s.size = 513;
+  s.seed = 1;
+  s.extent = 1000;
+  s.heightScale = 120;
+  return lb::makeProcedural(s);
+}
+
+// Pixels whose largest channel difference exceeds the threshold, as compareImages counts them.
+std::vector<uint8_t> overMask(const RgbaImage& a, const RgbaImage& b, int threshold) {
+  std::vector<uint8_t> m(size_t(a.width) * size_t(a.height));
+  for (size_t i = 0; i < m.size(); ++i) {
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.px[i * 4 + size_t(c)]) - int(b.px[i * 4 + size_t(c)])));
+    m[i] = d > threshold;
+  }
+  return m;
+}
+
+}  // namespace
+
+class GroundTruth : public lbtest::GpuTest {};
+
+// quick.json's set-up (320x180, grid 32, 30 fps, every 40th frame measured) on each shipped path
+// (one test per path, so ctest -j runs them side by side: the reference renders are slow on lavapipe).
+class GroundTruthPaths : public lbtest::GpuTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(GroundTruthPaths, ReferenceSchemeIsWithin40DbOfTheRayCastOnEveryMeasuredFrame) {
+  const Heightfield hf = quickTerrain();
+  const int w = 320, h = 180, every = 40;
+  Renderer r(lbtest::gpu(), hf, {w, h, 32});
+  r.setScheme(*findScheme("reference"), {});
+  const char* name = GetParam();
+  CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/" + name + ".csv");
+  double worst = 1e9, sum = 0, worstFrac = 0;
+  int n = 0, worstFrame = -1;
+  for (int f = 0; f < frameCount(path, 30); f += every) {
+    CameraPose pose = samplePose(path, 30, f, hf);
+    RgbaImage tess{w, h, r.renderImage(pose, pose, RenderMode::Shaded)};
+    RgbaImage truth = raycastImage(hf, pose, w, h);
+    ImageError e = compareImages(tess, truth, 16);
+    EXPECT_GE(e.psnrDb, 40.0) << name << " frame " << f;
+    if (e.psnrDb < worst) worst = e.psnrDb, worstFrame = f;
+    worstFrac = std::max(worstFrac, e.fractionOver);
+    sum += e.psnrDb;
+    ++n;
+  }
+  EXPECT_GT(n, 10);
+  std::printf("[ground truth] %s: %d frames, reference vs ray cast PSNR mean %.1f dB, worst %.1f dB (frame %d), "
+              "largest fraction over 16: %.5f\n", name, n, sum / n, worst, worstFrame, worstFrac);
+}
+
+INSTANTIATE_TEST_SUITE_P(ShippedPaths, GroundTruthPaths, ::testing::Values("flyover", "lowalt", "horizon"));
+
+// One patch of the tessellated side's heightfield raised by 5% of the terrain's height range: the
+// difference against the ray cast of the unmodified terrain shows inside that patch's screen
+// footprint and nowhere else.
+TEST_F(GroundTruth, PlantedRaisedPatchShowsOnlyInItsFootprint) {
+  const Heightfield& hf = lbtest::testTerrain();  // 129^2 over 1000: a grid-8 patch is 16 texels
+  const int w = 320, h = 180, grid = 8, px = 3, pz = 4;
+  const int texels = (hf.width - 1) / grid;
+  const float raise = 0.05f * (hf.maxHeight - hf.minHeight);
+  Heightfield planted = hf;
+  for (int z = pz * texels; z <= (pz + 1) * texels; ++z)
+    for (int x = px * texels; x <= (px + 1) * texels; ++x) planted.h[size_t(z) * size_t(hf.width) + size_t(x)] += raise;
+  planted.updateRange();
+  const CameraPose pose = lbtest::poseAt({500, 900, -250}, {500, 0, 500});
+  Renderer r(lbtest::gpu(), planted, {w, h, grid});
+  r.setScheme(*findScheme("reference"), {});
+  RgbaImage tess{w, h, r.renderImage(pose, pose, RenderMode::Shaded)};
+  RgbaImage truth = raycastImage(hf, pose, w, h);
+  std::vector<uint8_t> over = overMask(tess, truth, 16);
+
+  // Footprint: the screen box of the world box that can change, the patch grown by 2 texels (the
+  // bilinear ramp into the neighbouring cells, then the shading normals' central differences one
+  // texel further), from the lowest terrain height to the raised top, grown by 1 pixel.
+  const double texel = hf.extent / double(hf.width - 1), size = hf.extent / grid;
+  CameraMatrices cam = cameraMatrices(pose, float(w) / float(h), hf.extent);
+  glm::dmat4 vp = glm::dmat4(cam.proj) * glm::dmat4(cam.view);
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec4 c = vp * glm::dvec4((i & 1 ? px + 1 : px) * size + (i & 1 ? 2 : -2) * texel,
+                                   i & 2 ? double(planted.maxHeight) : double(hf.minHeight),
+                                   (i & 4 ? pz + 1 : pz) * size + (i & 4 ? 2 : -2) * texel, 1.0);
+    ASSERT_GT(c.w, 0);
+    double sx = (c.x / c.w * 0.5 + 0.5) * w, sy = (c.y / c.w * 0.5 + 0.5) * h;
+    x0 = std::min(x0, sx), x1 = std::max(x1, sx), y0 = std::min(y0, sy), y1 = std::max(y1, sy);
+  }
+  long inside = 0, outside = 0, insideBox = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool in = x + 0.5 >= x0 - 1 && x + 0.5 <= x1 + 1 && y + 0.5 >= y0 - 1 && y + 0.5 <= y1 + 1;
+      insideBox += in;
+      (in ? inside : outside) += over[size_t(y) * w + size_t(x)];
+    }
+  std::printf("[ground truth] planted patch (+%.1f): %ld pixels over 16 inside its %ld-pixel footprint, %ld outside\n",
+              raise, inside, insideBox, outside);
+  EXPECT_GT(inside, 0);
+  EXPECT_EQ(outside, 0);
+  EXPECT_LT(insideBox, long(w) * h / 4) << "the footprint must be a small part of the image, or this proves little";
+  // Unplanted, the same view differs nowhere by more than the threshold.
+  Renderer clean(lbtest::gpu(), hf, {w, h, grid});
+  clean.setScheme(*findScheme("reference"), {});
+  RgbaImage plain{w, h, clean.renderImage(pose, pose, RenderMode::Shaded)};
+  std::vector<uint8_t> base = overMask(plain, truth, 16);
+  EXPECT_EQ(std::count(base.begin(), base.end(), 1), 0);
 }

@@ -1,9 +1,14 @@
 // Popping (design section 6): the current pose rendered with the previous pose's LOD camera
 // against live LOD. Only level changes may show up: a static camera and a camera-independent
 // scheme give exactly zero, a jump in LOD gives a visible difference.
+#include <cmath>
+
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "metrics/popping.h"
+#include "sweep/config.h"
+#include "sweep/measure.h"
+#include "sweep/results.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -88,4 +93,40 @@ TEST_F(Popping, CullsWithTheLiveCameraAndRestoresTheSetting) {
   r.setCullCamera(Renderer::CullCamera::Lod);
   measurePopping(r, farPose(), nearPose());
   EXPECT_EQ(r.cullCamera(), Renderer::CullCamera::Lod);
+}
+
+// A case's first frame has no previous frame: popping is null there, not 0, and summaries average
+// only the frames that could pop (issue 9 item 5).
+TEST_F(Popping, FirstFrameIsNullAndSummariesSkipIt) {
+  Renderer r(gpu(), testTerrain(), {kW, kH, kGrid});
+  r.setScheme(*findScheme("sphere"), {});
+  MeasureSpec spec;
+  spec.every = 1;
+  spec.passes = {"popping"};
+  ReferenceCache refs;
+  auto value = [](const FrameMetrics& m, const std::string& k) {
+    for (auto& [name, v] : m.values)
+      if (name == k) return v;
+    ADD_FAILURE() << k << " missing";
+    return 0.0;
+  };
+  FrameMetrics m0 = measureFrame(gpu(), r, *findScheme("sphere"), r.params(), testTerrain(), "t", spec, refs, 0,
+                                 nearPose(), nearPose());
+  FrameMetrics m10 = measureFrame(gpu(), r, *findScheme("sphere"), r.params(), testTerrain(), "t", spec, refs, 10,
+                                  farPose(), nearPose());
+  for (const char* k : {"pop_mean", "pop_p99", "pop_changed"}) EXPECT_TRUE(std::isnan(value(m0, k))) << k;
+  const double pop10 = value(m10, "pop_mean");
+  ASSERT_GT(pop10, 0.0) << "premise: frame 10 pops, so a fake 0 averaged in would show";
+
+  CaseResult cr;
+  for (int f : {0, 10}) cr.frames.push_back(FrameResult{f, 1.0, 1.0, {}});
+  cr.metrics = {m0, m10};
+  nlohmann::json summary = caseSummary(cr);
+  EXPECT_EQ(summary["pop_mean"]["mean"].get<double>(), pop10);
+  EXPECT_EQ(summary["pop_mean"]["max"].get<double>(), pop10);
+  nlohmann::json cj = caseJson(Case{}, cr);
+  EXPECT_TRUE(cj["frames"][0]["pop_mean"].is_null());
+  EXPECT_TRUE(cj["frames"][0]["pop_changed"].is_null());
+  EXPECT_EQ(cj["frames"][1]["pop_mean"].get<double>(), pop10);
+  EXPECT_EQ(cj["image_reference"], kImageReference);
 }

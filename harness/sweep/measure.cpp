@@ -21,21 +21,6 @@ const std::set<std::string>& allMeasurePasses() {
   return passes;
 }
 
-const RgbaImage& ReferenceCache::image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
-                                       const RenderSettings& settings, const CameraPose& pose) {
-  std::ostringstream key;
-  key.precision(9);
-  key << terrainKey << '|' << settings.width << 'x' << settings.height << '|' << settings.grid << '|' << pose.eye.x << ','
-      << pose.eye.y << ',' << pose.eye.z << '|' << pose.target.x << ',' << pose.target.y << ',' << pose.target.z << '|'
-      << pose.fovDeg;
-  auto it = images_.find(key.str());
-  if (it != images_.end()) return it->second;
-  Renderer ref(ctx, terrain, settings);
-  ref.setScheme(*findScheme("reference"), {});
-  RgbaImage img{settings.width, settings.height, ref.renderImage(pose, pose, RenderMode::Shaded)};
-  return images_[key.str()] = std::move(img);
-}
-
 std::vector<std::string> metricColumns() {
   std::vector<std::string> c;
   for (int i = 0; i < LB_HIST_BINS; ++i) c.push_back("hist_" + std::to_string(i));
@@ -101,6 +86,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       set("surplus", o.triangles ? double(live.stats.clipInvocations) / double(o.triangles) : kNan);
     }
   }
+  // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
   if (spec.on("image") || spec.on("cracks")) m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
   if (spec.on("image")) {
     ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);
@@ -114,11 +100,12 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
   }
   if (spec.on("popping")) {
-    // Frame 0 has no previous camera: nothing can pop yet.
-    PopResult pop = frame > 0 ? measurePopping(r, previous, current) : PopResult{0, 0, 0};
+    // A case's first frame has no previous frame: popping is undefined there (null), not 0, so
+    // summaries average only frames that could pop.
+    PopResult pop = frame > 0 ? measurePopping(r, previous, current) : PopResult{kNan, kNan, 0};
     set("pop_mean", pop.mean);
     set("pop_p99", pop.p99);
-    set("pop_changed", double(pop.changed));
+    set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
   }
   set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
   return m;

@@ -1,7 +1,7 @@
 #pragma once
 // Measurement passes of one frame (design section 6), run after a case's timing frames so they
-// never perturb the timings: histogram, screen-space error, image error against `reference`,
-// cracks, popping, surplus.
+// never perturb the timings: histogram, screen-space error, image error against the ray-cast
+// ground truth, cracks, popping, surplus.
 #include <array>
 #include <cstdint>
 #include <map>
@@ -12,6 +12,7 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
+#include "metrics/raycast_cache.h"
 #include "render/renderer.h"
 
 namespace lb {
@@ -33,20 +34,14 @@ struct FrameMetrics {
   std::vector<std::pair<std::string, double>> values;
   bool hasHistogram = false;
   TriangleHistogram histogram;
-  RgbaImage shaded, reference;    // kept for crack masks and image strips
+  RgbaImage shaded, reference;    // kept for crack masks and image strips; reference = ground truth
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
 };
 
-// Renders `reference` images once per camera and keeps them for every case of a sweep.
-class ReferenceCache {
- public:
-  const RgbaImage& image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
-                         const RenderSettings& settings, const CameraPose& pose);
-
- private:
-  std::map<std::string, RgbaImage> images_;
-};
+// What image metrics (img_*), crack pixels and the images that show them compare against:
+// recorded in every case record as "image_reference" (docs/results-format.md).
+constexpr const char* kImageReference = "raycast";
 
 FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme, const ParamValues& params,
                           const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,

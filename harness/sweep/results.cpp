@@ -196,6 +196,7 @@ json caseJson(const Case& c, const CaseResult& r) {
                        {"height_scale", c.terrain.heightScale}}},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
+          {"image_reference", kImageReference},
           {"status", r.status},
           {"reason", r.reason},
           {"seconds", r.seconds},

@@ -246,7 +246,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   double runSeconds = 0;
   int ran = 0;
-  ReferenceCache refs;
+  ReferenceCache refs(totals.dir + "/truth");  // ground-truth images persist for resume
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
   for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
@@ -285,7 +285,6 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
         // A lost device is unusable: start a new one for the remaining cases.
         destroyContext(ctx);
         createContext(ctx, {config.device, options.validation});
-        refs = ReferenceCache{};
       }
     }
     runSeconds += secondsSince(tc);

@@ -1,0 +1,42 @@
+#pragma once
+// Persistent cache of ray-cast ground-truth images (metrics/raycast.h), one per terrain,
+// resolution and camera pose, shared by every case of a sweep.
+#include <map>
+#include <string>
+
+#include "camera/camera_path.h"
+#include "metrics/image_metrics.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+struct Context;
+struct Heightfield;
+
+// Ground truth of a frame: the ray cast of the true heightfield (metrics/raycast.h), made once
+// per terrain, resolution and camera pose and kept for every case of a sweep. With a directory,
+// each image is written there (<dir>/<terrain>_<w>x<h>_<key hash>.png) as soon as it is made and
+// read back instead of ray cast again, so a resumed sweep loses no ray casts to a kill. The key
+// hashes everything that defines the image: the heights themselves, extent, resolution, pose.
+class ReferenceCache {
+ public:
+  ReferenceCache() = default;
+  explicit ReferenceCache(std::string dir) : dir_(std::move(dir)) {}
+  // ctx is unused (the ground truth is made on the CPU); kept so callers need not change.
+  const RgbaImage& image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
+                         const RenderSettings& settings, const CameraPose& pose);
+  const RgbaImage& image(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
+                         const CameraPose& pose);
+  int rayCasts() const { return rayCasts_; }  // images made in this process
+  int loaded() const { return loaded_; }      // images read back from the directory
+  // The file an image of this terrain, resolution and pose is kept in ("" without a directory).
+  std::string file(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
+                   const CameraPose& pose) const;
+
+ private:
+  std::string dir_;
+  std::map<std::string, RgbaImage> images_;
+  int rayCasts_ = 0, loaded_ = 0;
+};
+
+}  // namespace lb
