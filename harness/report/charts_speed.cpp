@@ -54,6 +54,12 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
       {"transform", {{{"filter", "datum.on_front"}}}},
       {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.8}}},
       {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
+  // errbound's sweep over max_error_px, all its cases on the path joined in error order: the
+  // reference front (the fewest triangles errbound needs for each error level) every scheme is read against.
+  json errboundFront = {
+      {"transform", {{{"filter", "datum.errbound_front"}}}},
+      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", "#222222"}}},
+      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
   json points = {{"mark", {{"type", "point"}, {"filled", true}, {"size", 80}, {"opacity", 0.9}}},
                  {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"shape", shape}, {"tooltip", tooltip}}}};
   // One row per facet cell carries corner=true, so the annotation is drawn once per cell.
@@ -74,7 +80,7 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
            {{"text", cost.title},
             {"subtitle",
              "one point per case; lines: each scheme's Pareto front (no other setting of the scheme "
-             "is both cheaper and more accurate)"}}},
+             "is both cheaper and more accurate); dashed: errbound's sweep over max_error_px, the reference front"}}},
           {"data", {{"url", "data/" + dataName + ".json"}}},
           {"facet",
            {{"row", {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"}, {"sort", run.scenarios}}},
@@ -84,7 +90,7 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
               {"title", nullptr},
               {"sort", {kErrors[0].label, kErrors[1].label}},
               {"header", {{"labelFontSize", 13}}}}}}},
-          {"spec", {{"width", 320}, {"height", 220}, {"layer", {front, points, better}}}},
+          {"spec", {{"width", 320}, {"height", 220}, {"layer", {errboundFront, front, points, better}}}},
           {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
 }
 
@@ -160,6 +166,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                                 {"err_px", xs[i]},
                                 {cost.field, costs[i]},
                                 {"on_front", bool(onFront[i])},
+                                {"errbound_front", cases[i]->scheme == "errbound"},
                                 {"corner", corner}});
           ys.push_back(costs[i]);
         }

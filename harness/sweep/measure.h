@@ -12,6 +12,7 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
+#include "metrics/surplus.h"
 #include "render/renderer.h"
 
 namespace lb {
@@ -43,6 +44,7 @@ class ReferenceCache {
  public:
   const RgbaImage& image(Context& ctx, const Heightfield& terrain, const std::string& terrainKey,
                          const RenderSettings& settings, const CameraPose& pose);
+  SurplusMatcher surplus;  // errbound renderer for the surplus search, kept across frames
 
  private:
   std::map<std::string, RgbaImage> images_;
