@@ -86,7 +86,7 @@ void main() {
   uint base = patchIndex() * LB_CAPTURE_STRIDE;
   if (patchCulled()) {
     writeLevels(vec4(0.0), vec2(0.0));
-    if (kCapture) capture.levels[base + LB_ERRBOUND_CAPTURE_UNMET] = capture.levels[base + LB_ERRBOUND_CAPTURE_PX] = 0.0;
+    if (kCapture) capture.levels[base + LB_ERRBOUND_CAPTURE_UNMET] = 0.0;
     return;
   }
   int n = int(frame.terrain.y);
@@ -102,8 +102,5 @@ void main() {
       outer[e] = max(own, float(1 << levelIndex(q, unused, unusedPx)));
   }
   writeLevels(outer, vec2(own));
-  if (kCapture) {
-    capture.levels[base + LB_ERRBOUND_CAPTURE_UNMET] = unmet ? 1.0 : 0.0;
-    capture.levels[base + LB_ERRBOUND_CAPTURE_PX] = px;
-  }
+  if (kCapture) capture.levels[base + LB_ERRBOUND_CAPTURE_UNMET] = unmet ? 1.0 : 0.0;
 }

@@ -3,8 +3,7 @@
 #ifndef LB_ERRBOUND_PARAMS_H
 #define LB_ERRBOUND_PARAMS_H
 #define LB_ERRBOUND_MAX_ERROR_PX 0
-// Capture slots (LB_CAPTURE_STRIDE floats per patch) after the 6 levels: 1 where a drawn patch
-// would need more than level 64 to meet the bound, and the bound in px its chosen level gives.
+// Capture slot (of LB_CAPTURE_STRIDE floats per patch) after the 6 levels: 1 where a drawn patch
+// would need more than level 64 to meet the bound, else 0.
 #define LB_ERRBOUND_CAPTURE_UNMET 6
-#define LB_ERRBOUND_CAPTURE_PX 7
 #endif

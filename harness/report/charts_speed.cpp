@@ -90,7 +90,7 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
               {"title", nullptr},
               {"sort", {kErrors[0].label, kErrors[1].label}},
               {"header", {{"labelFontSize", 13}}}}}}},
-          {"spec", {{"width", 320}, {"height", 220}, {"layer", {errboundFront, front, points, better}}}},
+          {"spec", {{"width", 320}, {"height", 220}, {"layer", {front, points, better, errboundFront}}}},
           {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
 }
 
