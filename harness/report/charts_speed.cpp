@@ -36,7 +36,8 @@ constexpr Cost kCosts[] = {
      "\u2199 better (fewer triangles, more accurate)"},
 };
 
-json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
+json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName,
+               bool hasErrbound) {
   json x = {{"field", "err_px"},
             {"type", "quantitative"},
             {"title", "screen-space error (px, mean over measured frames)"},
@@ -90,7 +91,11 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
               {"title", nullptr},
               {"sort", {kErrors[0].label, kErrors[1].label}},
               {"header", {{"labelFontSize", 13}}}}}}},
-          {"spec", {{"width", 320}, {"height", 220}, {"layer", {front, points, better, errboundFront}}}},
+          // The reference layer only when errbound has rows: an empty layer makes Vega warn of infinite extents.
+          {"spec",
+           {{"width", 320},
+            {"height", 220},
+            {"layer", hasErrbound ? json{front, points, better, errboundFront} : json{front, points, better}}}},
           {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
 }
 
@@ -178,7 +183,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
           ": left out, no case has both a cost and a screen-space error (err_mean_px, err_p95_px): the run had "
           "no measurement passes, or every case failed.";
     } else {
-      chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName);
+      bool hasErrbound = std::any_of(chart.data.begin(), chart.data.end(), [](const json& r) { return r["errbound_front"] == true; });
+      chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName, hasErrbound);
       if (!unmeasured.empty()) {
         std::string list;
         for (auto& u : unmeasured) list += (list.empty() ? "" : ", ") + u;
