@@ -6,6 +6,7 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
+#include "metrics/surplus.h"
 #include "render/renderer.h"
 
 namespace lb {
@@ -27,6 +28,7 @@ class ReferenceCache {
                          const RenderSettings& settings, const CameraPose& pose);
   const RgbaImage& image(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
                          const CameraPose& pose);
+  SurplusMatcher surplus;  // errbound renderer for the surplus search, kept across the sweep's frames
   int rayCasts() const { return rayCasts_; }  // images made in this process
   int loaded() const { return loaded_; }      // images read back from the directory
   // The file an image of this terrain, resolution and pose is kept in ("" without a directory).

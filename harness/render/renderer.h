@@ -78,6 +78,13 @@ class Renderer {
 
   // Builds the scheme's pipelines and preprocessing; waits for frames in flight first.
   void setScheme(const Scheme& scheme, const ParamValues& params);
+  // New values for the current scheme's parameters without rebuilding pipelines or preprocessing:
+  // only for parameters that reach the shaders through the uniform block alone and leave maxLevel
+  // unchanged (errbound's max_error_px in the surplus search, metrics/surplus.h).
+  void setUniformParams(const ParamValues& given) {
+    params_ = resolveParams(scheme_->info(), given);
+    scheme_->validate(params_);
+  }
   // Records and submits a frame. `lod` is the camera the LOD decision uses (normally == view).
   void submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod,
                    RenderMode mode = RenderMode::Shaded, bool capture = false);

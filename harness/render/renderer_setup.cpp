@@ -187,7 +187,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     std::memcpy(push.params, packed.params, sizeof push.params);
     runComputePass(ctx_, scheme.info().compute, sampler_, height_.view, schemeTex_, push);
   } else {
-    SchemeTexture tex = scheme.preprocess(terrain_, params_);
+    SchemeTexture tex = scheme.preprocessGrid(terrain_, params_, settings_.grid);
     if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
     createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), VK_FORMAT_R32G32B32A32_SFLOAT,
                 texUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);

@@ -69,6 +69,10 @@ class Scheme {
   virtual float maxLevel(const ParamValues&) const { return 64.0f; }
   // Load-time preprocessing on the CPU; empty texture when the scheme needs none.
   virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
+  // The same for a scheme whose table follows the base grid (grid x grid patches); the renderer calls this one.
+  virtual SchemeTexture preprocessGrid(const Heightfield& hf, const ParamValues& v, int /*grid*/) const {
+    return preprocess(hf, v);
+  }
   // Load-time patch layout; no vertices = the renderer's uniform grid. `grid` is
   // RenderSettings::grid, so a scheme's own layout can size its finest patch as extent / grid.
   virtual PatchGeometry patchGeometry(const Heightfield&, const ParamValues&, int /*grid*/) const { return {}; }

@@ -36,7 +36,8 @@ constexpr Cost kCosts[] = {
      "\u2199 better (fewer triangles, more accurate)"},
 };
 
-json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName) {
+json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName,
+               bool hasErrbound) {
   json x = {{"field", "err_px"},
             {"type", "quantitative"},
             {"title", "screen-space error (px, mean over measured frames)"},
@@ -54,6 +55,12 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
       {"transform", {{{"filter", "datum.on_front"}}}},
       {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.8}}},
       {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
+  // errbound's sweep over max_error_px, all its cases on the path joined in error order: the
+  // reference front (the fewest triangles errbound needs for each error level) every scheme is read against.
+  json errboundFront = {
+      {"transform", {{{"filter", "datum.errbound_front"}}}},
+      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", "#222222"}}},
+      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
   json points = {{"mark", {{"type", "point"}, {"filled", true}, {"size", 80}, {"opacity", 0.9}}},
                  {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"shape", shape}, {"tooltip", tooltip}}}};
   // One row per facet cell carries corner=true, so the annotation is drawn once per cell.
@@ -74,7 +81,7 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
            {{"text", cost.title},
             {"subtitle",
              "one point per case; lines: each scheme's Pareto front (no other setting of the scheme "
-             "is both cheaper and more accurate)"}}},
+             "is both cheaper and more accurate); dashed: errbound's sweep over max_error_px, the reference front"}}},
           {"data", {{"url", "data/" + dataName + ".json"}}},
           {"facet",
            {{"row", {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"}, {"sort", run.scenarios}}},
@@ -84,7 +91,11 @@ json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale
               {"title", nullptr},
               {"sort", {kErrors[0].label, kErrors[1].label}},
               {"header", {{"labelFontSize", 13}}}}}}},
-          {"spec", {{"width", 320}, {"height", 220}, {"layer", {front, points, better}}}},
+          // The reference layer only when errbound has rows: an empty layer makes Vega warn of infinite extents.
+          {"spec",
+           {{"width", 320},
+            {"height", 220},
+            {"layer", hasErrbound ? json{front, points, better, errboundFront} : json{front, points, better}}}},
           {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
 }
 
@@ -160,6 +171,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                                 {"err_px", xs[i]},
                                 {cost.field, costs[i]},
                                 {"on_front", bool(onFront[i])},
+                                {"errbound_front", cases[i]->scheme == "errbound"},
                                 {"corner", corner}});
           ys.push_back(costs[i]);
         }
@@ -171,7 +183,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
           ": left out, no case has both a cost and a screen-space error (err_mean_px, err_p95_px): the run had "
           "no measurement passes, or every case failed.";
     } else {
-      chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName);
+      bool hasErrbound = std::any_of(chart.data.begin(), chart.data.end(), [](const json& r) { return r["errbound_front"] == true; });
+      chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName, hasErrbound);
       if (!unmeasured.empty()) {
         std::string list;
         for (auto& u : unmeasured) list += (list.empty() ? "" : ", ") + u;

@@ -174,9 +174,10 @@ Table caseTable(const ReportRun& run, std::vector<std::string>& omitted) {
 
 Table stabilityTable(const ReportRun& run, const std::string& runHref) {
   Table t{{"scheme", "path", "cases ok / failed / skipped", "cracks: edges (max)", "cracks: pixels (max)",
-           "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "worst frames"},
+           "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "surplus: mean (cases' range)",
+           "errbound: frames with unmet bound", "worst frames"},
           {},
-          {false, false, false, true, true, true, true, true, false}};
+          {false, false, false, true, true, true, true, true, true, true, false}};
   for (auto& scheme : run.schemes)
     for (auto& scenario : run.scenarios) {
       std::vector<const ReportCase*> all, ok;
@@ -190,6 +191,25 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
       }
       if (all.empty()) continue;
       auto sat = maxOver(ok, "saturated_fraction", "").first;
+      // Surplus (docs/results-format.md): the mean over a case's measured frames; range over the cases.
+      std::optional<double> sLo, sHi;
+      double unmet = 0;
+      bool hasUnmet = false;
+      for (auto* c : ok) {
+        if (auto v = summaryStat(c->summary, "surplus", "mean")) {
+          sLo = sLo ? std::min(*sLo, *v) : *v;
+          sHi = sHi ? std::max(*sHi, *v) : *v;
+        }
+        if (auto u = plainNumber(c->summary, "errbound_unmet_frames")) unmet += *u, hasUnmet = true;
+      }
+      std::string surplus = "–";
+      if (sLo) {
+        double mean = 0;
+        int n = 0;
+        for (auto* c : ok)
+          if (auto v = summaryStat(c->summary, "surplus", "mean")) mean += *v, ++n;
+        surplus = formatValue(mean / n) + (*sLo < *sHi ? " (" + formatValue(*sLo) + "–" + formatValue(*sHi) + ")" : "");
+      }
       t.rows.push_back(
           {textCell(scheme), textCell(scenario),
            textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
@@ -197,7 +217,8 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
            textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
            textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
            textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
-           textCell(sat ? formatValue(100 * *sat) + " %" : "–"), worstCell(run, ok, runHref)});
+           textCell(sat ? formatValue(100 * *sat) + " %" : "–"), textCell(surplus),
+           textCell(hasUnmet ? formatValue(unmet) : "–"), worstCell(run, ok, runHref)});
     }
   return t;
 }

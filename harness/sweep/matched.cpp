@@ -9,7 +9,7 @@
 namespace lb {
 
 std::string matchParamName(const SchemeInfo& info) {
-  for (const char* name : {"tri_size", "level", "max_lod"})
+  for (const char* name : {"tri_size", "level", "max_lod", "max_error_px"})
     for (auto& p : info.params)
       if (p.name == name) return name;
   return "";

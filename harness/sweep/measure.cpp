@@ -5,10 +5,10 @@
 
 #include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
-#include "metrics/oracle.h"
 #include "metrics/popping.h"
 #include "metrics/stats.h"
 #include "schemes/registry.h"
+#include "shaders/errbound_params.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 
@@ -29,6 +29,8 @@ std::vector<std::string> metricColumns() {
                         "img_mad", "img_frac_over", "cracks_analytic", "cracks_pixels", "pop_mean", "pop_p99",
                         "pop_changed", "surplus", "saturated_patches"})
     c.push_back(n);
+  for (const char* n : {"surplus_bound_px", "surplus_p95_px", "surplus_triangles", "surplus_matched", "errbound_unmet_patches"})
+    c.push_back(n);
   return c;
 }
 
@@ -41,6 +43,13 @@ static double saturatedPatches(const std::vector<float>& levels, Partitioning p)
     for (int k = 0; k < 6; ++k) m = std::max(m, levels[i + size_t(k)]);
     n += m >= cap;
   }
+  return double(n);
+}
+
+static double errboundUnmetPatches(const std::vector<float>& levels) {
+  long n = 0;
+  for (size_t i = 0; i + LB_CAPTURE_STRIDE <= levels.size(); i += LB_CAPTURE_STRIDE)
+    n += levels[i + LB_ERRBOUND_CAPTURE_UNMET] > 0.5f;
   return double(n);
 }
 
@@ -79,11 +88,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
-    // Surplus: the oracle's smallest uniform level per patch meeting this frame's p95 error.
+    // Surplus: errbound's triangles at the bound whose measured p95 matches this frame's (metrics/surplus.h).
     if (spec.on("surplus") && !e.empty()) {
-      CameraMatrices cam = cameraMatrices(current, float(rs.width) / float(rs.height), terrain.extent);
-      OracleResult o = surplusOracle(terrain, rs.grid, cam, rs.width, rs.height, s.p95);
-      set("surplus", o.triangles ? double(live.stats.clipInvocations) / double(o.triangles) : kNan);
+      SurplusResult sr = refs.surplus.match(ctx, terrain, rs, current, s.p95, live.stats.clipInvocations);
+      set("surplus", sr.surplus);
+      set("surplus_bound_px", sr.boundPx);
+      set("surplus_p95_px", sr.errboundP95);
+      set("surplus_triangles", sr.errboundTriangles);
+      set("surplus_matched", double(sr.matched));
     }
   }
   // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
@@ -108,6 +120,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
   }
   set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
+  // errbound flags drawn patches whose level 64 still misses max_error_px (shaders/errbound_params.h).
+  if (scheme.info().name == "errbound") set("errbound_unmet_patches", errboundUnmetPatches(levels));
   return m;
 }
 

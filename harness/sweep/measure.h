@@ -13,6 +13,7 @@
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
 #include "metrics/raycast_cache.h"
+#include "metrics/surplus.h"
 #include "render/renderer.h"
 
 namespace lb {

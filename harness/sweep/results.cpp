@@ -125,7 +125,7 @@ json caseSummary(const CaseResult& r) {
   std::map<std::string, std::pair<double, int>> worst;  // metric -> (value, frame)
   std::vector<uint64_t> histTotal(LB_HIST_BINS, 0);
   uint64_t offscreen = 0, backfacing = 0;
-  int saturatedFrames = 0;
+  int saturatedFrames = 0, unmetFrames = 0;
   for (const FrameMetrics& m : r.metrics) {
     for (auto& [k, v] : m.values) {
       if (k.rfind("hist_", 0) == 0 || !std::isfinite(v)) continue;
@@ -133,6 +133,7 @@ json caseSummary(const CaseResult& r) {
       auto& w = worst[k];
       if (series[k].size() == 1 || v > w.first) w = {v, m.frame};
       if (k == "saturated_patches" && v > 0) ++saturatedFrames;
+      if (k == "errbound_unmet_patches" && v > 0) ++unmetFrames;
     }
     if (m.hasHistogram) {
       for (size_t i = 0; i < histTotal.size(); ++i) histTotal[i] += m.histogram.bins[i];
@@ -146,6 +147,8 @@ json caseSummary(const CaseResult& r) {
   out["hist_offscreen_total"] = offscreen;
   out["hist_backfacing_total"] = backfacing;
   out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
+  // errbound: measured frames where some drawn patch could not meet max_error_px even at level 64.
+  if (series.count("errbound_unmet_patches")) out["errbound_unmet_frames"] = unmetFrames;
   json wf = json::object();
   for (const char* k : {"cracks_pixels", "cracks_analytic", "pop_mean", "err_p95_px"})
     if (worst.count(k)) wf[k] = worst[k].second;
