@@ -36,6 +36,7 @@ struct FrameMetrics {
   RgbaImage shaded, reference;    // kept for crack masks and image strips
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
+  std::map<std::string, std::string> unavailable;  // pass -> why the device cannot run it (its values are null)
 };
 
 // Renders `reference` images once per camera and keeps them for every case of a sweep.
