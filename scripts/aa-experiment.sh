@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 bin=${LODBENCH:-build/lodbench}
 n=${1:-20}
 out=${2:-/tmp/lodbench-aa}
-rm -rf "$out"
+[[ -n ${AA_ANALYZE_ONLY:-} ]] || rm -rf "$out"
 mkdir -p "$out"
 cat >"$out/aa.json" <<JSON
 {"name": "aa", "resolution": [96, 54], "grid": 8, "fps": 30, "warmup_frames": 3, "max_frames": 40,
@@ -22,15 +22,32 @@ cat >"$out/aa.json" <<JSON
 JSON
 start=$(date +%s)
 for ((k = 1; k <= n; k++)); do
+  [[ -n ${AA_ANALYZE_ONLY:-} ]] && break  # re-analyse the runs already in OUT
   d=$out/c$k
   for side in a1 b1 b2 a2 a3 b3; do  # interleaved, so slow drifts fall on both sides alike
-    "$bin" run "$out/aa.json" --out "$d/${side:0:1}/r${side:1}" --quiet >/dev/null
+    "$bin" run "$out/aa.json" --out "$d/${side:0:1}/r${side:1}" --quiet >/dev/null 2>&1
   done
   "$bin" compare "$d/a" "$d/b" --json "$d/compare.json" >/dev/null 2>&1 || true
 done
 python3 - "$out" "$n" <<'PY'
-import json, sys, glob, statistics
-from scipy.stats import mannwhitneyu
+import json, sys, glob, statistics, math
+
+def mannwhitneyu_p(x, y):  # two-sided, normal approximation with tie and continuity correction
+    allv = sorted([(v, 0) for v in x] + [(v, 1) for v in y])
+    n1, n2 = len(x), len(y); n = n1 + n2
+    ranks_x = 0.0; tie = 0.0; i = 0
+    while i < n:
+        j = i
+        while j < n and allv[j][0] == allv[i][0]: j += 1
+        r = (i + 1 + j) / 2.0; t = j - i; tie += t ** 3 - t
+        ranks_x += r * sum(1 for k in range(i, j) if allv[k][1] == 0)
+        i = j
+    u = ranks_x - n1 * (n1 + 1) / 2.0
+    u = max(u, n1 * n2 - u)
+    var = n1 * n2 / 12.0 * ((n + 1) - tie / (n * (n - 1)))
+    if var <= 0: return 1.0
+    z = (u - n1 * n2 / 2.0 - 0.5) / math.sqrt(var)
+    return min(1.0, math.erfc(z / math.sqrt(2)))
 out, n = sys.argv[1], int(sys.argv[2])
 cases = flagged = comps = 0
 old_cases = old_flagged = old_comps = 0
@@ -50,7 +67,7 @@ for k in range(1, n + 1):
         a = [x["gpu_ms"] for x in json.load(open(f))["frames"]]
         b = [x["gpu_ms"] for x in json.load(open(f.replace("/a/r1/", "/b/r1/")))["frames"]]
         ratio = statistics.median(b) / statistics.median(a)
-        p = mannwhitneyu(a, b, alternative="two-sided", method="asymptotic").pvalue
+        p = mannwhitneyu_p(a, b)
         old_cases += 1
         if p < 0.01 and (ratio > 1.1 or ratio < 1 / 1.1):
             old_flagged += 1; old_hit = True

@@ -220,9 +220,9 @@ TEST(Resume, SweepKilledAtTwentyRandomMomentsEqualsAnUninterruptedRun) {
     pid_t pid = fork();
     if (pid == 0) {
       unsetenv("LODBENCH_VALIDATION");  // lavapipe speed, not validation, is what kills race here
-      int null = open("/dev/null", O_WRONLY);
-      dup2(null, 1);
-      dup2(null, 2);
+      int log = open((d / "log.txt").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);  // read it when this fails
+      dup2(log, 1);
+      dup2(log, 2);
       execl(LODBENCH_BINARY, LODBENCH_BINARY, "run", cfg.c_str(), "--out", out.c_str(), "-q", (char*)nullptr);
       _exit(127);
     }
@@ -286,7 +286,7 @@ TEST(Resume, SweepKilledAtTwentyRandomMomentsEqualsAnUninterruptedRun) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
     if (exited) {  // the sweep finished before the moment: check it, then start a new one
-      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(d / "log.txt");
       expectEqualToRef();
       fs::remove_all(run);
       continue;
@@ -302,8 +302,7 @@ TEST(Resume, SweepKilledAtTwentyRandomMomentsEqualsAnUninterruptedRun) {
   EXPECT_EQ(kills, 20);
   EXPECT_GT(lateKills, 0);
   waitpid(start(run), &status, 0);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(d / "log.txt");
   expectEqualToRef();
   EXPECT_GE(compared, 1);
 }
