@@ -2,12 +2,18 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "compare/run_data.h"
+#include "error.h"
+#include "report/run_data.h"
 #include "sweep/config.h"
+#include "sweep/gbench_json.h"
+#include "sweep/merge.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -168,20 +174,67 @@ TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
   EXPECT_NE(header.find(",surplus,"), std::string::npos);
 }
 
-// A device without a feature a case needs: the case is skipped with the reason, the sweep goes on.
-TEST(Results, CaseNeedingAMissingFeatureIsSkipped) {
+// Defect (issue 11): a device without geometry shaders cannot run the histogram pass, which
+// used to mark the whole case skipped and throw its valid timing frames away. Now the pass is null
+// with its reason in each measured frame record, and the case keeps its timings and stays ok.
+TEST(Results, OptionalPassTheDeviceCannotRunIsNullAndTheCaseStaysOk) {
   Config c = tinyConfig();
   c.measure.every = 2;
-  c.measure.passes = {"histogram"};
+  c.measure.passes = {"histogram", "cracks"};
   fs::path d = freshDir("lodbench_skip");
   setenv("LODBENCH_TEST_DISABLE", "geometryShader", 1);
   RunTotals t = runSweep(c, {d.string(), false, false});
   unsetenv("LODBENCH_TEST_DISABLE");
-  EXPECT_EQ(t.skipped, 2);
+  EXPECT_EQ(t.ok, 2);
+  EXPECT_EQ(t.skipped, 0);
   EXPECT_EQ(t.failed, 0);
-  json s = readJson(d / "summary.json");
-  for (auto& k : s["cases"]) {
-    EXPECT_EQ(k["status"], "skipped");
-    EXPECT_NE(k["reason"].get<std::string>().find("geometryShader"), std::string::npos) << k["reason"];
+  EXPECT_EQ(t.validationErrors, 0);
+  EXPECT_EQ(readJson(d / "run.json")["test_disabled_features"], "geometryShader");
+  for (auto& e : fs::directory_iterator(d / "cases")) {
+    json k = readJson(e.path());
+    SCOPED_TRACE(e.path().string());
+    EXPECT_EQ(k["status"], "ok");
+    ASSERT_EQ(k["frames"].size(), 4u);  // every timing frame kept
+    int measured = 0;
+    for (auto& f : k["frames"]) {
+      EXPECT_GT(f["clip_invocations"].get<uint64_t>(), 0u);
+      if (!f.contains("unavailable")) continue;
+      ++measured;
+      EXPECT_TRUE(f["hist"].is_null());
+      EXPECT_TRUE(f["tri_area_mean"].is_null());
+      EXPECT_NE(f["unavailable"]["histogram"].get<std::string>().find("geometryShader"), std::string::npos);
+      EXPECT_TRUE(f["cracks_analytic"].is_number());  // the passes the device can run still ran
+    }
+    EXPECT_EQ(measured, 2);
+    EXPECT_TRUE(k["summary"]["hist_total"].is_null());
+    EXPECT_NE(k["summary"]["unavailable"]["histogram"].get<std::string>().find("geometryShader"), std::string::npos);
+    EXPECT_TRUE(k["summary"]["gpu_ms"].is_object());
   }
+}
+
+// Defect (issue 11): five readers parsed the run directory with five error policies, and the
+// aggregates silently dropped an unreadable case file. Now every reader goes through
+// results/run_dir.h: an unreadable case file is an error naming it, for report, compare, gbench,
+// merge and the aggregates alike.
+TEST(Results, EveryReaderNamesAnUnreadableCaseFile) {
+  fs::path d = freshDir("lodbench_unreadable");
+  fs::create_directories(d / "cases");
+  std::ofstream(d / "run.json") << R"({"schema_version": 1, "context": {"tool": "lodbench", "config": {}}})";
+  std::ofstream(d / "summary.json") << R"({"schema_version": 1, "context": {}, "cases": []})";
+  std::ofstream(d / "cases/good.json") << R"({"case_id": "good", "status": "ok", "frames": []})";
+  std::ofstream(d / "cases/bad.json") << R"({"case_id": "bad", "frames": [)";
+  const std::string bad = (d / "cases/bad.json").string() + ": not valid JSON";
+  auto expectNamed = [&](const char* who, const std::function<void()>& f) {
+    try {
+      f();
+      ADD_FAILURE() << who << " read past an unreadable case file";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << who << ": " << e.what();
+    }
+  };
+  expectNamed("report", [&] { loadReportRun(d.string()); });
+  expectNamed("compare", [&] { loadRun(d.string()); });
+  expectNamed("gbench", [&] { googleBenchmarkJson(d.string()); });
+  expectNamed("aggregates", [&] { writeAggregates(d.string(), json::object()); });
+  expectNamed("merge", [&] { mergeRuns((d / "merged").string(), {d.string()}, false); });
 }

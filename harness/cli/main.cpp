@@ -130,6 +130,8 @@ int main(int argc, char** argv) {
   bool dryRun = false;
   run->add_option("--shard", shard, "Run the deterministic subset i/n of the cases (case index % n == i)");
   run->add_flag("--dry-run", dryRun, "List the cases (of this shard) and exit");
+  run->add_flag("--rerun-changed", ro.rerunChanged,
+                "Resume: rerun finished cases whose inputs (files, settings) changed instead of refusing");
 
   auto* merge = app.add_subcommand("merge", "Join shard run directories into one run");
   std::string mergeOut;
@@ -201,6 +203,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::Range(1e-9, 0.5));
     sub->add_option("--error-tolerance", co.errorTolerance, "Relative worsening of accuracy metrics allowed")
         ->capture_default_str()->check(CLI::NonNegativeNumber);
+    sub->add_flag("--require-exact", co.requireExact,
+                  "Counters that cannot be compared (other device or driver) are an error (exit 2), not a pass");
     sub->add_option("--json", vf.json, "Write the verdict as JSON");
     sub->add_option("--md", vf.md, "Write the verdict as Markdown");
   }

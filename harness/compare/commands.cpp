@@ -27,16 +27,18 @@ static int report(const CompareReport& r, const VerdictFiles& files) {
   writeVerdict(r, files.json, files.md);
   std::fprintf(stderr, "lodbench compare: %s: %d of %zu cases regressed, %d improved\n",
                r.exitCode() ? "REGRESSION" : "clean", r.regressions(), r.cases.size(), r.improvements());
+  for (auto& n : r.notChecked) std::fprintf(stderr, "lodbench compare: NOT CHECKED: %s\n", n.c_str());
   return r.exitCode();
 }
 
 int compareCommand(const std::string& baselineDir, const std::vector<std::string>& candidateDirs,
                    const CompareOptions& options, const VerdictFiles& files) {
   return checked([&] {
-    RunData baseline = loadRun(baselineDir);
+    // Either side may be a folder of rounds (r1/, r2/, ...): rounds are the timing evidence.
     std::vector<RunData> rounds;
-    for (auto& dir : candidateDirs) rounds.push_back(loadRun(dir));
-    return report(compareRuns(baseline, poolRuns(rounds), options), files);
+    for (auto& dir : candidateDirs)
+      for (auto& r : loadRounds(dir)) rounds.push_back(std::move(r));
+    return report(compareRuns(poolRuns(loadRounds(baselineDir)), poolRuns(rounds), options), files);
   });
 }
 

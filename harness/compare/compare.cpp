@@ -7,17 +7,18 @@
 #include <utility>
 
 #include "compare/significance.h"
+#include "error.h"
 
 namespace lb {
 
 using nlohmann::json;
 
 const char* const kTimingMethod =
-    "ratio = median(candidate GPU ms) / median(baseline GPU ms) over every timing frame; interval: percentile "
-    "bootstrap (2000 resamples of each side, splitmix64 seed 0x10DBE7C4) at confidence 1 - alpha; p: two-sided "
-    "Mann-Whitney U, normal approximation with tie and continuity correction; with several rounds (A/B mode, or "
-    "several candidate runs) the ratio of the rounds' medians (A/B: median of the per-pair ratios) must pass the "
-    "threshold as well";
+    "rounds are the samples (frames of one run share its clock, caches and load and are not independent): each "
+    "round's median GPU ms; ratio = exp(mean(log candidate rounds) - mean(log baseline rounds)) with a Student t "
+    "interval at confidence 1 - alpha; p: Welch's t-test on the log round medians (A/B mode: paired t-test on the "
+    "per-pair log ratios); a verdict needs at least 3 rounds per side, else the ratio of the round medians' medians "
+    "is reported without one";
 
 namespace {
 
@@ -63,10 +64,11 @@ std::string firstDifference(const json& b, const json& c, std::string& bv, std::
     const json& y = c.contains(f) ? c[f] : kAbsent;
     if (x != y) note(f, x, y);
   }
-  // Measurement keys only where both records carry them (older runs may predate a metric).
+  // A measurement the baseline has and the candidate lacks (or has as null) is a difference: a
+  // pass that stopped working must not pass as "nothing to compare".
   for (auto& [key, x] : b.items()) {
-    if (!isExactMeasurement(key) || !c.contains(key)) continue;
-    const json& y = c[key];
+    if (!isExactMeasurement(key)) continue;
+    const json& y = c.contains(key) ? c[key] : kAbsent;
     if (x.is_array() && y.is_array() && x.size() == y.size()) {
       for (size_t i = 0; i < x.size(); ++i)
         if (x[i] != y[i]) {
@@ -121,45 +123,46 @@ bool compareExact(const CaseData& b, const CaseData& c, ExactDiff& d) {
 void compareTiming(const CaseData& b, const CaseData& c, const CompareOptions& o, TimingCheck& t) {
   t.nBaseline = int(b.gpuMs.size());
   t.nCandidate = int(c.gpuMs.size());
-  if (t.nBaseline < 2 || t.nCandidate < 2) {
-    t.reason = "fewer than 2 timing frames on a side";
+  t.roundsBaseline = int(b.roundMedians.size());
+  t.roundsCandidate = int(c.roundMedians.size());
+  if (b.roundMedians.empty() || c.roundMedians.empty()) {
+    t.reason = "no timing frames on a side";
     return;
   }
-  t.baselineMs = median(b.gpuMs);
-  t.candidateMs = median(c.gpuMs);
-  if (!(t.baselineMs > 0)) {
-    t.reason = "baseline median GPU time is 0 (no timestamps on its device)";
+  t.baselineMs = median(b.roundMedians);
+  t.candidateMs = median(c.roundMedians);
+  if (!(t.baselineMs > 0) || !(t.candidateMs > 0)) {
+    t.reason = "a median GPU time is 0 (no timestamps on its device)";
     return;
   }
-  RatioInterval ci = bootstrapMedianRatio(b.gpuMs, c.gpuMs, 1.0 - o.alpha);
-  t.ratio = ci.ratio;
-  t.lo = ci.lo;
-  t.hi = ci.hi;
-  t.p = mannWhitneyU(b.gpuMs, c.gpuMs).p;
-  // Frames of one process share its conditions (load, clocks), so one disturbed round can make
-  // pooled frames differ "significantly"; with rounds, the change must also hold round by round:
-  // the median of the per-pair ratios (A/B rounds run side by side), else the ratio of the
-  // medians of the round medians (rounds recorded at different times).
-  const size_t nb = b.roundMedians.size(), nc = c.roundMedians.size();
-  bool slower = t.ratio > 1.0 + o.threshold, faster = t.ratio < 1.0 / (1.0 + o.threshold);
-  if (nb >= 1 && nc >= 1 && std::max(nb, nc) >= 2) {
-    t.roundsBaseline = int(nb);
-    t.roundsCandidate = int(nc);
-    t.pairedRounds = o.pairedRounds && nb == nc;
-    if (t.pairedRounds) {
-      std::vector<double> ratios;
-      for (size_t i = 0; i < nb; ++i) ratios.push_back(c.roundMedians[i] / b.roundMedians[i]);
-      t.roundRatio = median(ratios);
-    } else {
-      t.roundRatio = median(c.roundMedians) / median(b.roundMedians);
+  t.ratio = t.candidateMs / t.baselineMs;
+  const int need = std::max(2, o.minRounds);
+  if (t.roundsBaseline < need || t.roundsCandidate < need) {
+    t.reason = "no timing verdict: " + std::to_string(t.roundsBaseline) + " baseline and " +
+               std::to_string(t.roundsCandidate) + " candidate round(s), a verdict needs " + std::to_string(need) +
+               " per side (frames of one run are not independent samples); ratio reported only";
+    return;
+  }
+  t.pairedRounds = o.pairedRounds && t.roundsBaseline == t.roundsCandidate;
+  for (double v : b.roundMedians)
+    if (!(v > 0)) {
+      t.reason = "a baseline round has no positive median GPU time";
+      return;
     }
-    slower = slower && t.roundRatio > 1.0 + o.threshold;
-    faster = faster && t.roundRatio < 1.0 / (1.0 + o.threshold);
-  }
+  for (double v : c.roundMedians)
+    if (!(v > 0)) {
+      t.reason = "a candidate round has no positive median GPU time";
+      return;
+    }
+  RoundTest rt = roundTest(b.roundMedians, c.roundMedians, t.pairedRounds, 1.0 - o.alpha);
+  t.ratio = rt.ratio;
+  t.lo = rt.lo;
+  t.hi = rt.hi;
+  t.p = rt.p;
   bool significant = t.p < o.alpha;
-  if (significant && slower)
+  if (significant && t.ratio > 1.0 + o.threshold)
     t.verdict = TimingVerdict::Regression;
-  else if (significant && faster)
+  else if (significant && t.ratio < 1.0 / (1.0 + o.threshold))
     t.verdict = TimingVerdict::Improvement;
   else
     t.verdict = TimingVerdict::Unchanged;
@@ -185,7 +188,11 @@ void compareAccuracy(const CaseData& b, const CaseData& c, const CompareOptions&
     AccuracyCheck a;
     a.metric = m.name;
     a.higherIsWorse = m.higherIsWorse;
-    if (!summaryValue(b.summary, m.name, a.baseline) || !summaryValue(c.summary, m.name, a.candidate)) continue;
+    if (!summaryValue(b.summary, m.name, a.baseline)) continue;
+    if (!summaryValue(c.summary, m.name, a.candidate)) {  // measured before, not now: a regression
+      cc.regressions.push_back(std::string(m.name) + " present in the baseline, missing in the candidate");
+      continue;
+    }
     double allowed = o.errorTolerance * std::abs(a.baseline) + 1e-12;
     a.worse = m.higherIsWorse ? a.candidate > a.baseline + allowed : a.candidate < a.baseline - allowed;
     cc.accuracy.push_back(a);
@@ -245,6 +252,11 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
       break;
     }
   }
+  if (!r.exactChecked) {
+    if (o.requireExact)
+      throw InputError("compare --require-exact: counters cannot be compared: " + r.exactSkipReason);
+    r.notChecked.push_back("exact counters and deterministic measurements were NOT checked: " + r.exactSkipReason);
+  }
   if (ctxString(base.context, "device") != ctxString(cand.context, "device"))
     r.notes.push_back("timings come from different devices: ratios compare devices, not code");
   if (cand.testSlowdown > 0)
@@ -299,6 +311,20 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
     }
     r.cases.push_back(std::move(cc));
   }
+  int noVerdict = 0;
+  std::string why;
+  for (auto& cc : r.cases)
+    if (cc.baselineStatus == "ok" && cc.candidateStatus == "ok" && cc.timing.verdict == TimingVerdict::NotChecked) {
+      ++noVerdict;
+      if (why.empty()) why = cc.timing.reason;
+    }
+  if (noVerdict)
+    r.notChecked.push_back("timing was NOT judged for " + std::to_string(noVerdict) + " of " +
+                           std::to_string(r.cases.size()) + " cases (" + why + ")");
+  if (!r.onlyInBaseline.empty())
+    r.notChecked.push_back(std::to_string(r.onlyInBaseline.size()) +
+                           " baseline case(s) are missing in the candidate and were NOT compared" +
+                           (o.requireExact ? " (a regression with --require-exact)" : ""));
   return r;
 }
 

@@ -1,11 +1,13 @@
 #pragma once
 // lodbench compare (design section 8): a candidate run against a baseline, case by case.
 //  - exact: per-frame pipeline-statistics counters and deterministic measurements must be equal
-//    (only when both runs come from the same device and driver);
-//  - timing: ratio of median GPU ms with a bootstrap interval, two-sided Mann-Whitney U test;
-//    a regression is significant (p < alpha) AND slower than 1 + threshold (with several rounds,
-//    as in A/B mode, the ratio of the rounds' medians must be beyond the threshold too);
-//  - accuracy: screen-space error and image metrics may not get worse beyond a tolerance.
+//    (comparable only when both runs come from the same device and driver: otherwise the verdict
+//    says loudly that they were not checked, and with requireExact it is an error);
+//  - timing: the unit of evidence is the round (one run), not the frame: a t-test on the rounds'
+//    log median GPU ms (>= minRounds per side); a regression is significant (p < alpha) AND
+//    slower than 1 + threshold. With fewer rounds the ratio is reported without a verdict;
+//  - accuracy: screen-space error and image metrics may not get worse beyond a tolerance; a metric
+//    the baseline has and the candidate lacks is a regression.
 #include <string>
 #include <vector>
 
@@ -18,6 +20,8 @@ struct CompareOptions {
   double alpha = 0.01;           // significance level; the ratio interval is at 1 - alpha
   double errorTolerance = 0.02;  // accuracy: relative change in the worse direction allowed
   bool pairedRounds = false;     // round i of each side ran side by side (A/B mode)
+  bool requireExact = false;     // counters that cannot be compared are an error (exit 2), not a pass
+  int minRounds = 3;             // rounds per side needed for a timing verdict
 };
 
 struct ExactDiff {
@@ -32,15 +36,13 @@ enum class TimingVerdict { NotChecked, Unchanged, Regression, Improvement };
 
 struct TimingCheck {
   TimingVerdict verdict = TimingVerdict::NotChecked;
-  std::string reason;                      // why not checked
-  double baselineMs = 0, candidateMs = 0;  // medians of the pooled per-frame GPU ms
-  double ratio = 0, lo = 0, hi = 0;        // candidate / baseline with its interval
-  double p = 1;
-  int nBaseline = 0, nCandidate = 0;
-  // With several rounds on a side (0 otherwise): paired (A/B mode) = median over i of
-  // candidate_i / baseline_i of the rounds' medians; else median of the candidate's round medians
-  // over the median of the baseline's.
-  double roundRatio = 0;
+  std::string reason;                      // why no verdict
+  double baselineMs = 0, candidateMs = 0;  // medians of the rounds' median GPU ms
+  // Candidate / baseline: with a verdict, the geometric-mean ratio of the round medians with its
+  // t interval at 1 - alpha; without, candidateMs / baselineMs (lo = hi = 0).
+  double ratio = 0, lo = 0, hi = 0;
+  double p = 1;                            // t-test on the rounds (1 without a verdict)
+  int nBaseline = 0, nCandidate = 0;       // timing frames (for information: frames are not samples)
   int roundsBaseline = 0, roundsCandidate = 0;
   bool pairedRounds = false;
 };
@@ -70,14 +72,16 @@ struct CompareReport {
   CompareOptions options;
   bool exactChecked = false;
   std::string exactSkipReason;  // why exact checks were skipped
+  std::vector<std::string> notChecked;  // what this verdict did not check, said loudly in every output
   std::vector<std::string> onlyInBaseline, onlyInCandidate;
   std::vector<std::string> notes;     // run-level remarks (different devices, planted slowdown)
   std::vector<CaseComparison> cases;  // matched cases, sorted by id
   int regressions() const;            // cases with at least one regression
   int improvements() const;
-  int exitCode() const { return regressions() > 0 ? 1 : 0; }
+  int exitCode() const { return regressions() > 0 || (options.requireExact && !onlyInBaseline.empty()) ? 1 : 0; }
 };
 
+// Throws InputError when options.requireExact and the counters cannot be compared.
 CompareReport compareRuns(const RunData& baseline, const RunData& candidate, const CompareOptions& options);
 const char* timingVerdictName(TimingVerdict v);
 

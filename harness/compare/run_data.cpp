@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "results/run_dir.h"
 #include "metrics/stats.h"
 
 namespace lb {
@@ -13,27 +14,11 @@ namespace lb {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json readJsonFile(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open (" + (fs::exists(file) ? "unreadable" : "missing") + ")");
-  std::stringstream text;
-  text << in.rdbuf();
-  try {
-    return json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(file + ": not valid JSON: " + e.what());
-  }
-}
-
-static void addCase(RunData& run, const std::string& file) try {
-  json cj = readJsonFile(file);
-  if (!cj.is_object() || !cj.contains("case_id") || !cj["case_id"].is_string())
-    throw InputError(file + ": not a lodbench case file (no \"case_id\")");
-  if (!cj.contains("frames") || !cj["frames"].is_array())
-    throw InputError(file + ": not a lodbench case file (no \"frames\" array)");
+static void addCase(RunData& run, const CaseFile& cf) try {
+  const json& cj = cf.doc;
   CaseData c;
-  c.id = cj["case_id"].get<std::string>();
-  c.file = file;
+  c.id = cf.id();
+  c.file = cf.file;
   c.status = cj.value("status", "ok");
   c.reason = cj.value("reason", "");
   c.frames = cj["frames"];
@@ -44,28 +29,34 @@ static void addCase(RunData& run, const std::string& file) try {
       if (f.contains("gpu_ms") && f["gpu_ms"].is_number()) c.gpuMs.push_back(f["gpu_ms"].get<double>());
     if (!c.gpuMs.empty()) c.roundMedians.push_back(percentile(c.gpuMs, 50));
   }
-  if (run.cases.count(c.id)) throw InputError(file + ": case_id '" + c.id + "' appears in two case files");
   run.cases[c.id] = std::move(c);
 } catch (const json::exception& e) {  // a field of the wrong type: untrusted input, not a bug
-  throw InputError(file + ": " + e.what());
+  throw InputError(cf.file + ": " + e.what());
 }
 
 RunData loadRun(const std::string& dir) {
-  if (!fs::is_directory(dir)) throw InputError(dir + ": no such run directory");
   RunData run;
   run.dir = dir;
-  json rj = readJsonFile(dir + "/run.json");
-  if (!rj.is_object() || !rj.contains("context") || !rj["context"].is_object())
-    throw InputError(dir + "/run.json: not a lodbench run file (no \"context\" object)");
+  json rj = readRunJson(dir);
   run.context = rj["context"];
   if (rj.contains("test_slowdown") && rj["test_slowdown"].is_number()) run.testSlowdown = rj["test_slowdown"];
-  std::vector<fs::path> files;
-  if (fs::is_directory(dir + "/cases"))
-    for (auto& e : fs::directory_iterator(dir + "/cases"))
-      if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (auto& f : files) addCase(run, f.string());
+  for (auto& cf : readCaseFiles(dir)) addCase(run, cf);
   return run;
+}
+
+std::vector<RunData> loadRounds(const std::string& dir) {
+  if (hasRunJson(dir) || !fs::is_directory(dir)) return {loadRun(dir)};
+  std::vector<std::string> rounds;
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.is_directory() && hasRunJson(e.path().string())) rounds.push_back(e.path().string());
+  if (rounds.empty()) throw InputError(dir + ": neither a run directory (run.json) nor a folder of rounds (*/run.json)");
+  // r1, r2, ..., r10 in numeric order.
+  std::sort(rounds.begin(), rounds.end(), [](const std::string& a, const std::string& b) {
+    return a.size() != b.size() ? a.size() < b.size() : a < b;
+  });
+  std::vector<RunData> out;
+  for (auto& r : rounds) out.push_back(loadRun(r));
+  return out;
 }
 
 RunData poolRuns(const std::vector<RunData>& rounds) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "results/run_dir.h"
+
 namespace lb {
 
 struct CaseData {
@@ -31,10 +33,11 @@ struct RunData {
 // for a missing directory, a missing or unreadable run.json, or a case file that is not JSON or
 // lacks case_id / frames.
 RunData loadRun(const std::string& dir);
+// A run directory, or a folder whose subdirectories are rounds of one config (e.g. a baseline
+// recorded as r1/, r2/, r3/): one RunData per round, in numeric name order.
+std::vector<RunData> loadRounds(const std::string& dir);
 // Pools rounds of one side: context, frames and summaries of the first round; gpu_ms of all
 // rounds. A case that failed in any round is failed (its reason names the round).
 RunData poolRuns(const std::vector<RunData>& rounds);
-// Reads and parses a JSON file; InputError "<file>: ..." when it is missing or not JSON.
-nlohmann::json readJsonFile(const std::string& file);
 
 }  // namespace lb

@@ -99,4 +99,104 @@ RatioInterval bootstrapMedianRatio(const std::vector<double>& baseline, const st
   return r;
 }
 
+namespace {
+
+// Continued fraction of the incomplete beta function (modified Lentz; Numerical Recipes 6.4).
+double betaContinuedFraction(double a, double b, double x) {
+  const double tiny = 1e-300;
+  double c = 1, d = 1 - (a + b) * x / (a + 1);
+  if (std::abs(d) < tiny) d = tiny;
+  d = 1 / d;
+  double h = d;
+  for (int m = 1; m <= 300; ++m) {
+    double m2 = 2.0 * m, aa = m * (b - m) * x / ((a - 1 + m2) * (a + m2));
+    d = 1 + aa * d, c = 1 + aa / c;
+    if (std::abs(d) < tiny) d = tiny;
+    if (std::abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    h *= d * c;
+    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1 + m2));
+    d = 1 + aa * d, c = 1 + aa / c;
+    if (std::abs(d) < tiny) d = tiny;
+    if (std::abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    double del = d * c;
+    h *= del;
+    if (std::abs(del - 1) < 1e-15) break;
+  }
+  return h;
+}
+
+double incompleteBeta(double a, double b, double x) {
+  if (x <= 0) return 0;
+  if (x >= 1) return 1;
+  double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log(1 - x);
+  if (x < (a + 1) / (a + b + 2)) return std::exp(lbt) * betaContinuedFraction(a, b, x) / a;
+  return 1 - std::exp(lbt) * betaContinuedFraction(b, a, 1 - x) / b;
+}
+
+double meanOf(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return s / double(v.size());
+}
+
+double varianceOf(const std::vector<double>& v) {  // sample variance (n - 1)
+  double m = meanOf(v), s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return v.size() > 1 ? s / double(v.size() - 1) : 0;
+}
+
+}  // namespace
+
+double studentTwoSidedP(double t, double df) {
+  if (!std::isfinite(t)) return 0;
+  return incompleteBeta(df / 2, 0.5, df / (df + t * t));
+}
+
+double studentQuantile(double confidence, double df) {
+  double lo = 0, hi = 1e6;
+  for (int i = 0; i < 200; ++i) {
+    double mid = (lo + hi) / 2;
+    (studentTwoSidedP(mid, df) > 1 - confidence ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
+}
+
+RoundTest roundTest(const std::vector<double>& b, const std::vector<double>& c, bool paired, double confidence) {
+  assert(b.size() >= 2 && c.size() >= 2 && (!paired || b.size() == c.size()));
+  std::vector<double> lb, lc;
+  for (double v : b) lb.push_back(std::log(v));
+  for (double v : c) lc.push_back(std::log(v));
+  RoundTest r;
+  double diff, se;
+  if (paired) {
+    std::vector<double> d;
+    for (size_t i = 0; i < lb.size(); ++i) d.push_back(lc[i] - lb[i]);
+    diff = meanOf(d);
+    se = std::sqrt(varianceOf(d) / double(d.size()));
+    r.df = double(d.size() - 1);
+  } else {
+    diff = meanOf(lc) - meanOf(lb);
+    double vb = varianceOf(lb) / double(lb.size()), vc = varianceOf(lc) / double(lc.size());
+    se = std::sqrt(vb + vc);
+    // Welch-Satterthwaite degrees of freedom.
+    r.df = se > 0 ? (vb + vc) * (vb + vc) /
+                        (vb * vb / double(lb.size() - 1) + vc * vc / double(lc.size() - 1))
+                  : double(lb.size() + lc.size() - 2);
+  }
+  r.ratio = std::exp(diff);
+  if (!(se > 0)) {  // no spread between rounds: equal means no evidence, different is certain
+    r.p = diff == 0 ? 1 : 0;
+    r.lo = r.hi = r.ratio;
+    return r;
+  }
+  r.t = diff / se;
+  r.p = studentTwoSidedP(r.t, r.df);
+  double q = studentQuantile(confidence, r.df);
+  r.lo = std::exp(diff - q * se);
+  r.hi = std::exp(diff + q * se);
+  return r;
+}
+
 }  // namespace lb

@@ -30,4 +30,22 @@ RatioInterval bootstrapMedianRatio(const std::vector<double>& baseline, const st
 
 double median(std::vector<double> values);
 
+// Two-sided p-value of Student's t with df degrees of freedom (regularized incomplete beta).
+double studentTwoSidedP(double t, double df);
+// t such that P(|T| > t) = 1 - confidence.
+double studentQuantile(double confidence, double df);
+
+// Timing evidence from rounds (one median GPU ms per run): the rounds are the samples, since
+// frames of one run share its clock, caches and neighbours and are not independent. On the log of
+// the round medians: Welch's t-test, or with paired rounds (A/B mode: round i of each side ran side
+// by side) a paired t-test on the per-pair log ratios. ratio = exp(mean log difference), the
+// geometric-mean ratio, with its t interval at `confidence`.
+struct RoundTest {
+  double ratio = 0, lo = 0, hi = 0;
+  double t = 0, df = 0;
+  double p = 1;
+};
+RoundTest roundTest(const std::vector<double>& baselineRounds, const std::vector<double>& candidateRounds, bool paired,
+                    double confidence);
+
 }  // namespace lb

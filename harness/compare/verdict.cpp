@@ -42,23 +42,15 @@ json verdictJson(const CompareReport& r) {
                      {"higher_is_worse", a.higherIsWorse},
                      {"worse", a.worse}});
     const TimingCheck& t = c.timing;
-    json timing = {
-        {"verdict", timingVerdictName(t.verdict)}, {"n_baseline", t.nBaseline}, {"n_candidate", t.nCandidate}};
-    if (t.verdict == TimingVerdict::NotChecked) {
-      timing["reason"] = t.reason;
-    } else {
-      timing.update({{"baseline_ms", t.baselineMs},
-                     {"candidate_ms", t.candidateMs},
-                     {"ratio", t.ratio},
-                     {"ci_lo", t.lo},
-                     {"ci_hi", t.hi},
-                     {"p", t.p}});
-      if (t.roundsBaseline)
-        timing.update({{"rounds_baseline", t.roundsBaseline},
-                       {"rounds_candidate", t.roundsCandidate},
-                       {"paired_rounds", t.pairedRounds},
-                       {"round_ratio", t.roundRatio}});
-    }
+    json timing = {{"verdict", timingVerdictName(t.verdict)},
+                   {"n_baseline", t.nBaseline},
+                   {"n_candidate", t.nCandidate},
+                   {"rounds_baseline", t.roundsBaseline},
+                   {"rounds_candidate", t.roundsCandidate},
+                   {"paired_rounds", t.pairedRounds}};
+    if (t.verdict == TimingVerdict::NotChecked) timing["reason"] = t.reason;
+    if (t.ratio > 0) timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio}});
+    if (t.verdict != TimingVerdict::NotChecked) timing.update({{"ci_lo", t.lo}, {"ci_hi", t.hi}, {"p", t.p}});
     json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
     if (c.exactDiffers)
       exact.update({{"first_frame", c.exact.frame},
@@ -90,7 +82,12 @@ json verdictJson(const CompareReport& r) {
       {"baseline", side(r.baselineDir, r.baselineContext)},
       {"candidate", side(r.candidateDir, r.candidateContext)},
       {"options",
-       {{"threshold", r.options.threshold}, {"alpha", r.options.alpha}, {"error_tolerance", r.options.errorTolerance}}},
+       {{"threshold", r.options.threshold},
+        {"alpha", r.options.alpha},
+        {"error_tolerance", r.options.errorTolerance},
+        {"require_exact", r.options.requireExact},
+        {"min_rounds", r.options.minRounds}}},
+      {"not_checked", r.notChecked},
       {"timing_method", kTimingMethod},
       {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
       {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
@@ -112,6 +109,10 @@ std::string verdictMarkdown(const CompareReport& r) {
   m << "- Regression: p < " << num(r.options.alpha) << " and GPU time ratio > " << num(1 + r.options.threshold)
     << "; accuracy tolerance " << num(r.options.errorTolerance * 100) << "%; " << r.improvements() << " improved\n";
   for (auto& n : r.notes) m << "- Note: " << n << "\n";
+  if (!r.notChecked.empty()) {
+    m << "\n## NOT CHECKED\n\n";
+    for (auto& n : r.notChecked) m << "- **" << n << "**\n";
+  }
 
   if (r.regressions()) {
     m << "\n## Regressions\n\n";
@@ -121,7 +122,7 @@ std::string verdictMarkdown(const CompareReport& r) {
 
   m << "\n## Exact figures (counters, histograms, cracks)\n\n";
   if (!r.exactChecked) {
-    m << "Skipped: " << r.exactSkipReason << ".\n";
+    m << "**NOT CHECKED**: " << r.exactSkipReason << ".\n";
   } else {
     int differing = 0;
     for (auto& c : r.cases) differing += c.exactDiffers;
@@ -141,27 +142,27 @@ std::string verdictMarkdown(const CompareReport& r) {
     }
   }
 
-  m << "\n## GPU time (median ms over every timing frame)\n\n"
+  m << "\n## GPU time (medians of the rounds' median ms)\n\n"
     << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
-    << "% interval] | p | frames | verdict |\n"
-    << "|---|---|---|---|---|---|---|\n";
+    << "% interval] | p | rounds | frames | verdict |\n"
+    << "|---|---|---|---|---|---|---|---|\n";
   for (auto& c : r.cases) {
     const TimingCheck& t = c.timing;
     m << "| `" << c.id << "` | ";
+    std::string rounds = t.pairedRounds ? std::to_string(t.roundsBaseline) + " pairs"
+                                        : std::to_string(t.roundsBaseline) + " / " + std::to_string(t.roundsCandidate);
     if (t.verdict == TimingVerdict::NotChecked) {
-      m << "- | - | - | - | " << t.nBaseline << " / " << t.nCandidate
-        << " | not checked: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
+      if (t.ratio > 0)
+        m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f");
+      else
+        m << "- | - | -";
+      m << " | - | " << rounds << " | " << t.nBaseline << " / " << t.nCandidate
+        << " | NO VERDICT: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
       continue;
     }
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
-      << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << t.nBaseline << " / "
-      << t.nCandidate << " | " << timingVerdictName(t.verdict);
-    if (t.roundsBaseline)
-      m << " (rounds x" << num(t.roundRatio, "%.3f") << ", "
-        << (t.pairedRounds ? std::to_string(t.roundsBaseline) + " pairs"
-                           : std::to_string(t.roundsBaseline) + " vs " + std::to_string(t.roundsCandidate) + " rounds")
-        << ")";
-    m << " |\n";
+      << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << rounds << " | "
+      << t.nBaseline << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict) << " |\n";
   }
 
   bool anyAccuracy = false;

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "error.h"
+#include "results/run_dir.h"
 
 namespace lb {
 
@@ -165,8 +166,8 @@ ReportRun loadReportRun(const std::string& dir) {
   if (!hasSummary && !hasCases)
     throw InputError(dir + ": not a lodbench run directory (no summary.json and no cases/; run `lodbench run` first)");
 
-  if (auto r = readJson(root / "run.json", run.notes); r && r->is_object())
-    run.run = *r;
+  if (hasRunJson(dir))
+    run.run = readRunJson(dir);  // present but unreadable is an error, as for every reader
   else
     run.notes.push_back("run.json missing: the run's context comes from summary.json");
   std::optional<json> summary = hasSummary ? readJson(root / "summary.json", run.notes) : std::nullopt;
@@ -187,22 +188,15 @@ ReportRun loadReportRun(const std::string& dir) {
       index[c.id] = run.cases.size();
       run.cases.push_back(std::move(c));
     }
-  std::vector<fs::path> files;
-  if (hasCases)
-    for (auto& e : fs::directory_iterator(root / "cases", ec))
-      if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (auto& f : files) {
-    auto j = readJson(f, run.notes);
-    if (!j || !j->is_object()) continue;
-    std::string id = str(*j, "case_id");
-    if (id.empty()) id = f.stem().string();
+  // An unreadable case file is an error naming it (results/run_dir.h), never a silently missing case.
+  for (auto& cf : readCaseFiles(dir)) {
+    std::string id = cf.id();
     if (!index.count(id)) {
       index[id] = run.cases.size();
       run.cases.push_back(ReportCase{});
       run.cases.back().id = id;
     }
-    fillCase(run.cases[index[id]], *j);
+    fillCase(run.cases[index[id]], cf.doc);
   }
   for (auto& c : run.cases)
     if (c.status.empty()) c.status = "unknown";

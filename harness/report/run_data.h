@@ -1,7 +1,7 @@
 #pragma once
 // A finished (or interrupted) run directory read back for the report: run.json, summary.json and
-// cases/*.json (docs/results-format.md). Missing files and missing metrics are not errors: the
-// report says what it could not show.
+// cases/*.json (docs/results-format.md) through results/run_dir.h. A missing summary.json or
+// metric is not an error (the report says what it could not show); an unreadable case file is.
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>

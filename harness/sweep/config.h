@@ -52,11 +52,20 @@ struct Case {
   std::string terrainLabel;
   std::string path;
   int width = 0, height = 0;
+  // What defines the case (results/case_identity.h) and its SHA-256: resume reuses a finished
+  // case only when the digest is unchanged.
+  nlohmann::json inputs;
+  std::string digest;
+  std::string terrainDigest;  // of the terrain alone: keys the reference images of this terrain
 };
 
 // Throws lb::InputError "file:line: field: problem".
 Config loadConfig(const std::string& file);
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir);
+// Case ids are readable (scheme-params_terrain_path_WxH) and unique: where the readable parts of
+// two different cases coincide, each gets a short digest suffix; terrains whose labels coincide
+// get one in their label. Duplicate entries (the same terrain, path contents, resolution or scheme
+// and parameters twice) are an InputError naming both.
 std::vector<Case> expandCases(const Config& config);
 std::string terrainLabel(const TerrainSpec& t);
 

@@ -13,6 +13,7 @@
 
 #include "error.h"
 #include "metrics/stats.h"
+#include "results/run_dir.h"
 #include "sweep/results.h"
 
 namespace lb {
@@ -21,14 +22,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-json readJson(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open");
-  json j = json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw InputError(file + ": not valid JSON");
-  return j;
-}
 
 std::string readLine(const std::string& file) {
   std::ifstream in(file);
@@ -139,22 +132,16 @@ void addCounters(json& entry, const json& frames, size_t begin, size_t end, cons
 
 json googleBenchmarkJson(const std::string& runDir) {
   if (!fs::is_directory(runDir)) throw InputError(runDir + ": no such run directory");
-  json run = readJson(runDir + "/run.json");
+  json run = readRunJson(runDir);
   json ctx = run.value("context", json::object());
   int reps = 1;
   if (ctx.contains("config") && ctx["config"].is_object()) reps = std::max(1, ctx["config"].value("repetitions", 1));
 
-  std::vector<fs::path> files;
-  if (fs::is_directory(runDir + "/cases"))
-    for (auto& e : fs::directory_iterator(runDir + "/cases"))
-      if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-
   json benchmarks = json::array();
   int family = 0;
-  for (auto& file : files) {
-    json cj = readJson(file.string());
-    std::string id = cj.value("case_id", file.stem().string());
+  for (auto& cf : readCaseFiles(runDir)) {
+    const json& cj = cf.doc;
+    std::string id = cf.id();
     json frames = cj.value("frames", json::array());
     json summary = cj.value("summary", json::object());
     json base = {{"name", id},       {"family_index", family++}, {"per_family_instance_index", 0},

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "metrics/cracks.h"
+#include "error.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/popping.h"
 #include "metrics/stats.h"
@@ -65,8 +66,16 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded, &live)};
   std::vector<float> levels = r.capturedLevels();
 
-  if (spec.on("histogram")) {
-    m.histogram = r.measureHistogram(current, current);
+  bool histogram = spec.on("histogram");
+  if (histogram) try {
+      m.histogram = r.measureHistogram(current, current);
+    } catch (const FeatureMissing& e) {  // an optional pass: null with its reason, the frame stays
+      m.unavailable["histogram"] = e.what();
+      histogram = false;
+      for (const char* k : {"tri_area_mean", "tri_area_median", "tri_frac_under_1px", "tri_frac_near_target"})
+        set(k, kNan);
+    }
+  if (histogram) {
     m.hasHistogram = true;
     const TriangleHistogram& h = m.histogram;
     double target = scheme.targetAreaPx(params);

@@ -38,6 +38,7 @@ struct FrameMetrics {
   RgbaImage shaded, reference;    // kept for crack masks and image strips; reference = ground truth
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
+  std::map<std::string, std::string> unavailable;  // pass -> why the device cannot run it (its values are null)
 };
 
 // What image metrics (img_*), crack pixels and the images that show them compare against:

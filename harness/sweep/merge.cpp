@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "results/run_dir.h"
 #include "sweep/gbench_json.h"
 #include "sweep/results.h"
 #include "sweep/runner.h"
@@ -15,19 +16,10 @@ namespace lb {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-static json readRun(const std::string& dir) {
-  std::string file = dir + "/run.json";
-  std::ifstream in(file);
-  if (!in) throw InputError("cannot open " + file + " (not a lodbench run directory?)");
-  json j = json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.contains("context")) throw InputError(file + ": not a valid run.json");
-  return j;
-}
-
 MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>& inputs, bool force) {
   if (inputs.empty()) throw InputError("merge: no run directories given");
   std::vector<json> runs;
-  for (auto& d : inputs) runs.push_back(readRun(d));
+  for (auto& d : inputs) runs.push_back(readRunJson(d));
   const json& first = runs[0]["context"];
   for (size_t i = 1; i < runs.size() && !force; ++i) {
     const json& c = runs[i]["context"];
@@ -42,19 +34,17 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
   fs::create_directories(outDir + "/images");
   MergeTotals t;
   for (auto& d : inputs) {
-    for (auto& e : fs::directory_iterator(d + "/cases")) {
-      if (e.path().extension() != ".json") continue;
-      fs::path dst = fs::path(outDir) / "cases" / e.path().filename();
+    for (auto& cf : readCaseFiles(d)) {
+      fs::path dst = fs::path(outDir) / "cases" / fs::path(cf.file).filename();
       if (fs::exists(dst)) {
         // Keep a finished copy over a failed one; otherwise the first shard's.
-        std::ifstream a(dst), b(e.path());
-        json ja = json::parse(a, nullptr, false), jb = json::parse(b, nullptr, false);
+        json ja = readJsonFile(dst.string());
         ++t.duplicates;
-        if (ja.value("status", "") == "ok" || jb.value("status", "") != "ok") continue;
+        if (ja.value("status", "") == "ok" || cf.doc.value("status", "") != "ok") continue;
       } else {
         ++t.cases;
       }
-      std::ifstream in(e.path(), std::ios::binary);
+      std::ifstream in(cf.file, std::ios::binary);
       writeFileAtomic(dst.string(), std::string(std::istreambuf_iterator<char>(in), {}));
     }
     if (fs::exists(d + "/images"))

@@ -143,9 +143,17 @@ json caseSummary(const CaseResult& r) {
   }
   for (auto& [k, v] : series) out[k] = summaryOf(v);
   out["measured_frames"] = r.metrics.size();
-  out["hist_total"] = histTotal;
-  out["hist_offscreen_total"] = offscreen;
-  out["hist_backfacing_total"] = backfacing;
+  bool anyHistogram = false;
+  json unavailable = json::object();
+  for (const FrameMetrics& m : r.metrics) {
+    anyHistogram = anyHistogram || m.hasHistogram;
+    for (auto& [pass, why] : m.unavailable) unavailable[pass] = why;
+  }
+  // Totals of a pass no frame could run are unknown, not zero.
+  out["hist_total"] = anyHistogram ? json(histTotal) : json(nullptr);
+  out["hist_offscreen_total"] = anyHistogram ? json(offscreen) : json(nullptr);
+  out["hist_backfacing_total"] = anyHistogram ? json(backfacing) : json(nullptr);
+  if (!unavailable.empty()) out["unavailable"] = unavailable;
   out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
   // errbound: measured frames where some drawn patch could not meet max_error_px even at level 64.
   if (series.count("errbound_unmet_patches")) out["errbound_unmet_frames"] = unmetFrames;
@@ -180,7 +188,12 @@ json caseJson(const Case& c, const CaseResult& r) {
         rec["hist"] = m.histogram.bins;
         rec["hist_offscreen"] = m.histogram.offscreen;
         rec["hist_backfacing"] = m.histogram.backfacing;
+      } else if (m.unavailable.count("histogram")) {
+        rec["hist"] = nullptr;
+        rec["hist_offscreen"] = nullptr;
+        rec["hist_backfacing"] = nullptr;
       }
+      if (!m.unavailable.empty()) rec["unavailable"] = m.unavailable;
       for (auto& [k, v] : m.values)
         if (k.rfind("hist_", 0) != 0) rec[k] = number(v);
       measured.erase(it);  // repetitions replay the same frames: measurements attach to the first
@@ -192,6 +205,8 @@ json caseJson(const Case& c, const CaseResult& r) {
   if (r.matched.is_object() && !r.matched.value("param", "").empty()) params[r.matched["param"]] = r.matched["value"];
   return {{"schema_version", kSchemaVersion},
           {"case_id", c.id},
+          {"digest", c.digest},
+          {"inputs", c.inputs},
           {"scheme", c.scheme},
           {"params", params},
           {"terrain", {{"type", c.terrain.type}, {"label", c.terrainLabel}, {"file", c.terrain.file},
@@ -229,7 +244,7 @@ std::string framesCsvRows(const json& cj) {
     for (const std::string& c : metricColumns()) {
       out += ",";
       if (c.rfind("hist_", 0) == 0 && std::isdigit(static_cast<unsigned char>(c[5]))) {
-        if (f.contains("hist")) out += f["hist"][size_t(std::stoi(c.substr(5)))].dump();
+        if (f.contains("hist") && f["hist"].is_array()) out += f["hist"][size_t(std::stoi(c.substr(5)))].dump();
       } else if (f.contains(c) && !f[c].is_null()) {
         out += f[c].dump();
       }

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "metrics/cracks.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
+#include "results/run_dir.h"
 #include "sweep/gbench_json.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -49,6 +51,12 @@ static void progressLine(bool progress, const char* what, int done, int total, d
   std::fprintf(stderr, "%s    %s %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", what, done, total, elapsed,
                elapsed / done * (total - done), tty ? "   " : "\n");
   std::fflush(stderr);
+}
+
+// Reference images are kept per terrain: keyed by its contents, so two terrains sharing a label
+// (or a cache kept across runs) never lend each other images.
+static std::string referenceKey(const Case& c) {
+  return c.terrainDigest.empty() ? c.terrainLabel : c.terrainLabel + "#" + c.terrainDigest.substr(0, 16);
 }
 
 CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
@@ -107,7 +115,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     auto tm = std::chrono::steady_clock::now();
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
-      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, ms, refs, f,
+      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
                                     pose(std::max(0, f - 1)), pose(f));
       if (wantsImage(f)) kept[f] = m;
       m.shaded = {};
@@ -130,7 +138,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
           MeasureSpec one = ms;
           one.every = 1;
           one.passes = {"error", "cracks"};
-          kept[frame] = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, c.terrainLabel, one, refs,
+          kept[frame] = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), one, refs,
                                      frame, pose(std::max(0, frame - 1)), pose(frame));
         }
         const FrameMetrics& m = kept[frame];
@@ -159,28 +167,6 @@ static std::string defaultRunDir(const Config& config) {
     if (std::isdigit(static_cast<unsigned char>(ch))) id += ch;
   id.insert(8, "-");
   return "results/" + config.name + "/" + id;
-}
-
-// frames.csv and summary.json are rebuilt from the case files, so resumed runs stay complete.
-void writeAggregates(const std::string& dir, const json& context) {
-  std::string csv = framesCsvHeader();
-  json cases = json::array();
-  std::vector<fs::path> files;
-  for (auto& e : fs::directory_iterator(dir + "/cases"))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (auto& file : files) {
-    std::ifstream in(file);
-    json cj = json::parse(in, nullptr, false);
-    if (cj.is_discarded()) continue;
-    cases.push_back({{"case_id", cj["case_id"]}, {"scheme", cj["scheme"]}, {"params", cj["params"]},
-                     {"terrain", cj["terrain"]["label"]}, {"path", cj["path"]}, {"resolution", cj["resolution"]},
-                     {"status", cj["status"]}, {"reason", cj["reason"]}, {"summary", cj["summary"]}});
-    csv += framesCsvRows(cj);
-  }
-  writeFileAtomic(dir + "/frames.csv", csv);
-  json summary = {{"schema_version", kSchemaVersion}, {"context", context}, {"cases", cases}};
-  writeFileAtomic(dir + "/summary.json", summary.dump(2));
 }
 
 void requestStop() { gStop = true; }
@@ -216,14 +202,14 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   RunTotals totals;
   totals.dir = options.outDir.empty() ? defaultRunDir(config) : options.outDir;
   std::string runJson = totals.dir + "/run.json";
+  auto cases = shardCases(config, options.shardIndex, options.shardCount);
+  // Every check on an existing directory comes before anything is written to it or a device opens.
   json previous;
-  if (std::ifstream in{runJson}) {
-    previous = json::parse(in, nullptr, false);
-    if (previous.is_discarded() || !previous.contains("context"))
-      throw InputError(runJson + ": not a lodbench run (unreadable run.json)");
-    if (previous["context"]["config"] != config.raw)
-      throw InputError(runJson + ": this run directory holds a different config ('" +
-                       previous["context"].value("config_file", "?") + "'); choose another --out");
+  ResumePlan plan;
+  if (hasRunJson(totals.dir)) {
+    previous = readRunJson(totals.dir);
+    plan = checkResume(totals.dir, previous, config.raw, options.shardIndex, options.shardCount, cases,
+                       options.rerunChanged);
   }
   fs::create_directories(totals.dir + "/cases");
   fs::create_directories(totals.dir + "/images");
@@ -232,17 +218,20 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   createContext(ctx, {config.device, options.validation});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
   json context = runContext(ctx, config);
+  json ids = json::array();
+  for (auto& c : cases) ids.push_back(c.id);
   json run = {{"schema_version", kSchemaVersion}, {"context", context}, {"start_time", context["time"]},
-              {"shard", {{"index", options.shardIndex}, {"count", options.shardCount}}}};
+              {"shard", {{"index", options.shardIndex}, {"count", options.shardCount}}}, {"case_ids", ids}};
   if (!previous.is_null()) {
     run["start_time"] = previous.value("start_time", context["time"].get<std::string>());
     run["resumed_at"] = previous.value("resumed_at", json::array());
     run["resumed_at"].push_back(context["time"]);
   }
   if (config.testSlowdown > 0) run["test_slowdown"] = config.testSlowdown;  // so no one mistakes it for data
+  if (const char* off = std::getenv("LODBENCH_TEST_DISABLE"))  // features a test switched off (vk/context.cpp)
+    run["test_disabled_features"] = off;
   writeFileAtomic(runJson, run.dump(2));
 
-  auto cases = shardCases(config, options.shardIndex, options.shardCount);
   auto t0 = std::chrono::steady_clock::now();
   double runSeconds = 0;
   int ran = 0;
@@ -252,13 +241,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
     const Case& c = cases[i];
     std::string caseFile = totals.dir + "/cases/" + c.id + ".json";
-    if (std::ifstream in{caseFile}) {
-      json old = json::parse(in, nullptr, false);
-      if (!old.is_discarded() && old.value("status", "") == "ok") {
-        totals.resumed++;
-        totals.ok++;
-        continue;
-      }
+    if (plan.reuse.count(c.id)) {  // finished with the same inputs (digest)
+      totals.resumed++;
+      totals.ok++;
+      continue;
     }
     if (options.progress) {
       // Remaining time from the mean duration of the cases run so far in this invocation.

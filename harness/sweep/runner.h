@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "results/run_dir.h"
 #include "sweep/config.h"
 #include "sweep/results.h"
 
@@ -17,6 +18,7 @@ struct RunOptions {
   bool progress = true;    // progress line on stderr
   bool validation = false;
   int shardIndex = 0, shardCount = 1;  // run cases whose index % shardCount == shardIndex
+  bool rerunChanged = false;  // resume: rerun finished cases whose inputs changed (else refuse)
 };
 
 // Thrown when a stop was requested (SIGINT/SIGTERM): the running case is dropped, finished ones stay.
@@ -34,8 +36,6 @@ struct RunTotals {
 };
 
 RunTotals runSweep(const Config& config, const RunOptions& options);
-// Rebuilds frames.csv and summary.json of a run directory from its case files.
-void writeAggregates(const std::string& dir, const nlohmann::json& context);
 // The cases this shard runs, in order (deterministic for a config).
 std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount);
 // Parses "i/n" (0 <= i < n); throws InputError naming the flag.

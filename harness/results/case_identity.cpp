@@ -1,0 +1,88 @@
+#include "results/case_identity.h"
+
+#include "results/sha256.h"
+#include "sweep/config.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+
+using nlohmann::json;
+
+static std::string fileDigest(const std::string& file, FileDigests& files) {
+  auto it = files.find(file);
+  if (it != files.end()) return it->second;
+  return files[file] = sha256File(file);
+}
+
+json terrainInputs(const TerrainSpec& t, FileDigests& files) {
+  json j = {{"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}};
+  if (t.type == "procedural") {
+    j["size"] = t.size;
+    j["seed"] = t.seed;
+  } else {
+    j["sha256"] = fileDigest(t.file, files);
+    if (t.type == "r16" || t.type == "r32f") j["raw_size"] = {t.rawWidth, t.rawHeight};
+  }
+  return j;
+}
+
+json pathInputs(const std::string& path, FileDigests& files) { return {{"sha256", fileDigest(path, files)}}; }
+
+json measurementInputs(const Config& c) {
+  json passes = json::array();
+  for (auto& p : c.measure.passes) passes.push_back(p);
+  json j = {{"grid", c.grid},
+            {"fps", c.fps},
+            {"warmup_frames", c.warmupFrames},
+            {"max_frames", c.maxFrames},
+            {"repetitions", c.repetitions},
+            {"measure", {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}}},
+            {"images", {{"frames", c.images.frames}, {"modes", c.images.modes}}}};
+  if (c.match.on())
+    j["match"] = {{"metric", c.match.metric}, {"value", c.match.value}, {"frames", c.match.frames},
+                  {"iterations", c.match.iterations}};
+  if (c.testSlowdown > 0) j["test_slowdown"] = c.testSlowdown;  // a planted slowdown changes the timings
+  return j;
+}
+
+json caseInputs(const json& terrain, const json& path, int width, int height, const std::string& scheme,
+                const json& params, const json& measurement) {
+  return {{"tool_version", LODBENCH_VERSION}, {"scheme", scheme},          {"params", params},
+          {"terrain", terrain},               {"path", path},              {"resolution", {width, height}},
+          {"measurement", measurement}};
+}
+
+// nlohmann::json keeps object keys sorted and prints doubles round-trip exactly, so the dump is a
+// canonical form.
+std::string inputsDigest(const json& inputs) { return sha256Hex(inputs.dump()); }
+
+static std::string brief(const json& v) {
+  if (v.is_string() && v.get<std::string>().size() == 64) return v.get<std::string>().substr(0, 8);
+  std::string s = v.dump();
+  return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+}
+
+static void diff(const json& a, const json& b, const std::string& at, std::string& out) {
+  if (a == b) return;
+  if (a.is_object() && b.is_object()) {
+    for (auto& [k, v] : a.items()) diff(v, b.contains(k) ? b[k] : json(), at.empty() ? k : at + "." + k, out);
+    for (auto& [k, v] : b.items())
+      if (!a.contains(k)) diff(json(), v, at.empty() ? k : at + "." + k, out);
+    return;
+  }
+  std::string name = at;
+  if (name.size() > 7 && name.compare(name.size() - 7, 7, ".sha256") == 0)
+    name = name.substr(0, name.size() - 7) + " file contents (sha256";
+  else
+    name += " (";
+  if (!out.empty()) out += "; ";
+  out += name + " " + (a.is_null() ? "absent" : brief(a)) + " -> " + (b.is_null() ? "absent" : brief(b)) + ")";
+}
+
+std::string describeInputChange(const json& recorded, const json& now) {
+  std::string out;
+  diff(recorded, now, "", out);
+  return out;
+}
+
+}  // namespace lb

@@ -1,0 +1,53 @@
+#pragma once
+// The run directory (docs/results-format.md) has one owner: this module reads run.json and
+// cases/*.json for every command (run/resume, merge, report, compare, gbench) with one error
+// policy: a file that is missing where it must exist, not JSON, or not a lodbench file is an
+// InputError naming it, never skipped. It also rebuilds the aggregates and decides what a resumed
+// run may keep (by the case digests, see case_identity.h).
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace lb {
+
+struct Case;
+
+// Reads and parses a JSON file; InputError "<file>: ..." when it is missing or not JSON.
+nlohmann::json readJsonFile(const std::string& file);
+
+bool hasRunJson(const std::string& dir);
+// dir/run.json, checked to be a lodbench run file (an object with a "context" object).
+nlohmann::json readRunJson(const std::string& dir);
+
+struct CaseFile {
+  std::string file;  // path of cases/<id>.json
+  nlohmann::json doc;
+  std::string id() const { return doc["case_id"].get<std::string>(); }
+};
+// Every cases/*.json of dir, sorted by file name, each checked to be a case file (an object with a
+// string "case_id" and a "frames" array); two files with one case_id are an error. No cases/
+// directory reads as no cases.
+std::vector<CaseFile> readCaseFiles(const std::string& dir);
+
+// Rebuilds frames.csv and summary.json of a run directory from its case files.
+void writeAggregates(const std::string& dir, const nlohmann::json& context);
+
+// What a resumed run keeps. A finished ("ok") case file is reused only when its recorded input
+// digest equals the case's digest now; failed and skipped cases run again.
+struct ResumePlan {
+  std::set<std::string> reuse;        // case ids kept as they are
+  std::vector<std::string> changed;   // "<id>: <what changed>" for ok cases whose inputs changed
+  std::vector<std::string> foreign;   // case files of cases this run does not have
+};
+ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases);
+
+// The checks `run` makes before reusing an existing directory: the same config, the same shard,
+// and (unless rerunChanged) no finished case whose inputs changed and no foreign case file.
+// Throws InputError naming the directory, the cases and what changed. With rerunChanged, the
+// changed cases run again and foreign case files are removed (each named on stderr).
+ResumePlan checkResume(const std::string& dir, const nlohmann::json& previousRun, const nlohmann::json& configRaw,
+                       int shardIndex, int shardCount, const std::vector<Case>& cases, bool rerunChanged);
+
+}  // namespace lb
