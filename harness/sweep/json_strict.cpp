@@ -61,14 +61,10 @@ json parseTracked(const std::string& text) {
 }  // namespace
 
 json parseJsonStrict(const std::string& text, const std::string& file) {
+  // Syntax first: the line scanner that places the other errors assumes valid JSON.
+  json j;
   try {
-    return parseTracked(text);
-  } catch (const StructureError& d) {
-    // The line scanner recurses, so it never sees text nested past the limit.
-    auto lines = d.tooDeep ? std::map<std::string, int>{} : jsonLineMap(text);
-    auto it = lines.find(d.pointer);
-    throw InputError(file + (it != lines.end() ? ":" + std::to_string(it->second) : "") + ": field '" + printable(d.pointer, 200) +
-                     "': " + d.problem);
+    j = json::parse(text);
   } catch (const json::parse_error& e) {
     size_t line = 1, col = 1;
     for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
@@ -81,6 +77,16 @@ json parseJsonStrict(const std::string& text, const std::string& file) {
     }
     throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + printable(e.what(), 200));
   }
+  try {
+    parseTracked(text);
+  } catch (const StructureError& d) {
+    // The line scanner recurses, so it never sees text nested past the limit.
+    auto lines = d.tooDeep ? std::map<std::string, int>{} : jsonLineMap(text);
+    auto it = lines.find(d.pointer);
+    throw InputError(file + (it != lines.end() ? ":" + std::to_string(it->second) : "") + ": field '" +
+                     printable(d.pointer, 200) + "': " + d.problem);
+  }
+  return j;
 }
 
 }  // namespace lb

@@ -110,7 +110,24 @@ Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& b
   return hf;
 }
 
+// stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that
+// UBSan reports; found by fuzzing, tests/fuzz/regressions/png16). Such a chunk is legal but no
+// encoder writes one, so refuse the file rather than hand it to the decoder.
+void rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  auto be32 = [&](size_t at) {
+    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+  };
+  for (size_t at = 8; at + 8 <= bytes.size();) {  // after the 8-byte signature: length, type, data, crc
+    const uint32_t len = be32(at);
+    if (len == 0 && std::memcmp(&bytes[at + 4], "IDAT", 4) == 0)
+      throw InputError(spec.file + ": PNG has an empty IDAT chunk at byte " + std::to_string(at) + " (not supported)");
+    if (len > bytes.size()) break;  // the decoder reports the truncation
+    at += 12 + size_t(len);
+  }
+}
+
 Heightfield loadPng16(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  rejectEmptyIdat(spec, bytes);
   if (bytes.size() > size_t(INT32_MAX)) throw InputError(spec.file + ": file too large for a PNG heightmap");
   const int len = int(bytes.size());
   int w = 0, h = 0, comp = 0;
