@@ -204,6 +204,7 @@ std::vector<Row> rows() {
       // --- the config file itself
       {"json_truncated", {{"c.json", "{\n \"paths\": [\"ok.csv\"],\n \"schemes\": [\"uniform\"\n"}}, kRun,
        {"c.json:4", "invalid JSON"}},
+      {"json_number_overflow", {{"c.json", cfg("\"grid\": 3e999999")}}, kRun, {"c.json", "invalid JSON", "number overflow"}},
       {"json_top_level_array", {{"c.json", "[1, 2]"}}, kRun, {"c.json", "expected an object"}},
       {"config_directory", {}, "run ${D} --out ${R} --quiet", {"is a directory"}},
       {"config_missing", {}, "run ${D}/none.json --out ${R} --quiet", {"none.json"}},

@@ -76,6 +76,9 @@ json parseJsonStrict(const std::string& text, const std::string& file) {
       }
     }
     throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + printable(e.what(), 200));
+  } catch (const json::exception& e) {
+    // e.g. out_of_range for a number past double's range (found by fuzzing); it carries no position.
+    throw InputError(file + ": invalid JSON: " + printable(e.what(), 200));
   }
   try {
     parseTracked(text);
