@@ -195,6 +195,31 @@ TEST(CameraPath, SamplePoseConvertsAndClampsToGround) {
   EXPECT_THROW(samplePose(p, 0, 0, hf), InputError);
 }
 
+// A binary file named as a path must not echo raw bytes (escape sequences, NULs) to the terminal.
+TEST(CameraPath, BinaryInputIsQuotedEscapedAndCut) {
+  const std::string h = "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov\n";
+  std::string junk = "\x1b[31m\x01\xff" + std::string(200, 'z');
+  const std::string e1 = errorOf(h + "0,0.2,0.5,0.2,0.5,0.1,0.5,60\n1," + junk + ",0.5,0.2,0.5,0.1,0.5,60\n");
+  EXPECT_EQ(e1.find('\x1b'), std::string::npos) << e1;
+  EXPECT_NE(e1.find("'\\x1b[31m\\x01\\xff"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("bytes)"), std::string::npos) << "long values are cut: " << e1;
+  const std::string e2 = errorOf(junk + ",x\n");
+  EXPECT_EQ(e2.find('\x1b'), std::string::npos) << e2;
+  EXPECT_NE(e2.find("header"), std::string::npos) << e2;
+}
+
+// The frame rate is a flag or config field, not part of the CSV: its message must not blame the file.
+TEST(CameraPath, BadFrameRateDoesNotBlameTheFile) {
+  const CameraPath p = parseCameraPath(std::string(kHeader) + "0,0.5,0.5,0.5,1,0,1,50\n2,0.5,0.5,0.5,0,0,0,70\n", "g.csv");
+  try {
+    frameCount(p, 0);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("g.csv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fps"), std::string::npos) << e.what();
+  }
+}
+
 class ShippedPath : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ShippedPath, ParsesAndStaysOverTerrain) {

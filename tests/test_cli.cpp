@@ -41,7 +41,7 @@ TEST(Cli, BadFlagsAndInputsExitTwoWithAClearMessage) {
   EXPECT_EQ(o.code, 2) << o.text;
   EXPECT_NE(o.text.find("--width"), std::string::npos) << o.text;
 
-  o = runCli("render --path /nonexistent/path.csv");
+  o = runCli("render --path /nonexistent/path.csv --out " + ::testing::TempDir() + "/x.png");
   EXPECT_EQ(o.code, 2) << o.text;
   EXPECT_NE(o.text.find("/nonexistent/path.csv"), std::string::npos) << o.text;
 
@@ -62,6 +62,59 @@ TEST(Cli, BadFlagsAndInputsExitTwoWithAClearMessage) {
 
   o = runCli("frobnicate");
   EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find("unknown subcommand 'frobnicate'"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("known: list, devices, run"), std::string::npos) << "lists the subcommands: " << o.text;
+
+  o = runCli("");  // bare: the help, and a usage exit code
+  EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find("Usage"), std::string::npos) << o.text;
+}
+
+// Issue 11: with the validation layer missing, a run that asked for validation used to warn and
+// go on without it, so "zero validation messages" held vacuously. Hide the layer from the loader.
+TEST(Cli, AskedForValidationFailsWithoutTheLayer) {
+  const std::string empty = ::testing::TempDir() + "/no_layers";
+  std::filesystem::create_directories(empty);
+  const std::string out = ::testing::TempDir() + "/no_layer.png";
+  std::filesystem::remove(out);
+  for (const std::string how : {"LODBENCH_VALIDATION=1", "LODBENCH_VALIDATION=0"}) {
+    const std::string cmd = "env " + how + " VK_LAYER_PATH=" + empty + " " + LODBENCH_BINARY +
+                            " render --path " + kSrc + "/configs/paths/horizon.csv --width 16 --height 16 --grid 2 --size 17" +
+                            (how.back() == '0' ? " --validation" : "") + " --out " + out + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string text;
+    std::array<char, 512> buf{};
+    while (fgets(buf.data(), int(buf.size()), p)) text += buf.data();
+    const int status = pclose(p);
+    EXPECT_EQ(WEXITSTATUS(status), 1) << cmd << "\n" << text;
+    EXPECT_NE(text.find("VK_LAYER_KHRONOS_validation is not installed"), std::string::npos) << text;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing rendered without the requested validation";
+  }
+  // run: refused before the run directory exists.
+  const std::string runDir = ::testing::TempDir() + "/no_layer_run";
+  std::filesystem::remove_all(runDir);
+  const std::string cmd = "env LODBENCH_VALIDATION=1 VK_LAYER_PATH=" + empty + " " + LODBENCH_BINARY + " run " +
+                          lb::test::kTinyConfig + " --quiet --out " + runDir + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string text;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), int(buf.size()), p)) text += buf.data();
+  EXPECT_EQ(WEXITSTATUS(pclose(p)), 1) << text;
+  EXPECT_NE(text.find("VK_LAYER_KHRONOS_validation is not installed"), std::string::npos) << text;
+  EXPECT_FALSE(std::filesystem::exists(runDir));
+}
+
+// Issue 9 item 4: render takes every terrain type a config can, r16 / r32f included.
+TEST(Cli, RenderLoadsRawTerrains) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/t.r16", std::ios::binary) << std::string(2 * 17 * 9, '\x10');
+  std::string out = dir + "/raw.png";
+  std::filesystem::remove(out);
+  Out o = runCli("render --scheme uniform --param level=2 --path " + kSrc + "/configs/paths/horizon.csv --width 32 --height 16 " +
+                 "--grid 2 --terrain r16 --terrain-file " + dir + "/t.r16 --terrain-width 17 --terrain-height 9 " +
+                 "--height-scale 0.01 --out " + out);
+  EXPECT_EQ(o.code, 0) << o.text;
+  EXPECT_TRUE(std::filesystem::exists(out)) << o.text;
 }
 
 TEST(Cli, RenderWritesAPng) {

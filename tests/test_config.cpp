@@ -1,6 +1,7 @@
 // Config parsing: defaults, expansion into cases, and errors that name file, line and field.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <set>
 
 #include "error.h"
@@ -99,5 +100,56 @@ TEST(Config, MissingFile) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/x.json"), std::string::npos);
+  }
+}
+
+// Issue 11: last-wins duplicate keys hid typos; now the second occurrence is named.
+TEST(Config, DuplicateKeysAreRejectedWithTheirLine) {
+  std::string e = errorOf("{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [{\"name\": \"sphere\",\n"
+                          "   \"params\": {\"tri_size\": 2,\n  \"tri_size\": 3}}]\n}");
+  EXPECT_NE(e.find("bad.json:5"), std::string::npos) << e;
+  EXPECT_NE(e.find("'/schemes/0/params/tri_size': duplicate key"), std::string::npos) << e;
+  // The same key in two different objects is fine.
+  EXPECT_EQ(errorOf("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"sphere\"}, {\"name\": \"uniform\"}]}"),
+            "");
+}
+
+// Issue 11: a path CSV is parsed with the config, so a malformed one stops the run before any case.
+TEST(Config, CameraPathErrorsAreFoundAtConfigTime) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/broken.csv") << "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov\n0,0,0,0,1,0,1,60\n1,oops,0,0,1,0,1,60\n";
+  try {
+    parseConfig("{\"paths\": [\"broken.csv\"],\n \"schemes\": [\"sphere\"]}", "c.json", dir);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("c.json:1: field '/paths/0'"), std::string::npos) << m;
+    EXPECT_NE(m.find("broken.csv:3: column 'eye_x'"), std::string::npos) << m;
+  }
+  EXPECT_NE(errorOf("{\"paths\": [\"paths\"], \"schemes\": [\"sphere\"]}").find("is a directory"), std::string::npos);
+}
+
+// Issue 11: fields a terrain type does not read, and image frames past the path, were silently ignored.
+TEST(Config, IgnoredFieldsAndUnreachableFramesAreRejected) {
+  const std::string p = "\"paths\": [\"paths/horizon.csv\"], \"schemes\": [\"sphere\"], ";
+  EXPECT_NE(errorOf("{" + p + "\"terrain\": {\"type\": \"procedural\", \"width\": 3}}").find("'/terrain/width'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{" + p + "\"terrain\": {\"type\": \"hgt\", \"file\": \"quick.json\", \"seed\": 3}}")
+                .find("'/terrain/seed': terrain type 'hgt' does not use 'seed'"),
+            std::string::npos);
+  Config c = parseConfig("{" + p + "\"max_frames\": 10, \"images\": {\"frames\": [0, 9, -10]}}", "ok.json", kBase);
+  EXPECT_EQ(c.images.frames.size(), 3u);
+  EXPECT_NE(errorOf("{" + p + "\"max_frames\": 10, \"images\": {\"frames\": [0, 10]}}").find("'/images/frames/1'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{" + p + "\"images\": {\"frames\": [-100000]}}").find("'/images/frames/0'"), std::string::npos);
+}
+
+// Issue 11: interlock accepted dmin == dmax, which distance rejects; the range rule is now one for all.
+TEST(Config, EmptyDistanceRangesAreRejectedForEveryScheme) {
+  for (const char* scheme : {"distance", "interlock", "planefit"}) {
+    std::string e = errorOf(std::string("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"") + scheme +
+                            "\", \"params\": {\"dmin\": 70, \"dmax\": 70}}]}");
+    EXPECT_NE(e.find("/schemes/0/params"), std::string::npos) << scheme << ": " << e;
+    EXPECT_NE(e.find("dmin"), std::string::npos) << scheme << ": " << e;
   }
 }

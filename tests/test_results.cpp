@@ -97,9 +97,11 @@ TEST(Results, SchemaOfEveryFile) {
 TEST(Results, FailingCaseIsRecordedAndSweepGoesOn) {
   fs::path dir = freshDir("lodbench_fail");
   fs::create_directories(dir);
-  // A heightmap that exists (the config accepts it) but is not a valid .hgt: its cases fail.
+  // The config reads its heightmaps (a bad one is exit 2 before any case), so the file breaks
+  // after the config was read: its cases fail at run time.
+  std::ofstream(dir / "broken.hgt", std::ios::binary) << std::string(8, '\0');
+  Config config = tinyConfig(R"(, {"type": "r16", "width": 2, "height": 2, "file": ")" + (dir / "broken.hgt").string() + R"("})");
   std::ofstream(dir / "broken.hgt") << "not a heightmap";
-  Config config = tinyConfig(R"(, {"type": "hgt", "file": ")" + (dir / "broken.hgt").string() + R"("})");
   RunTotals t = runSweep(config, {(dir / "run").string(), false, false});
   EXPECT_EQ(t.ok, 2);
   EXPECT_EQ(t.failed, 2);

@@ -263,7 +263,7 @@ TEST(Terrain, Png16Roundtrip) {
   const int w = 5, h = 3;
   const std::vector<uint16_t> px = {0, 1, 2, 65535, 12345, 100, 200, 300, 400, 500, 32768, 7, 8, 9, 65534};
   TerrainSpec s = fileSpec("png16", "height16.png");
-  s.heightScale = 300.0f;
+  s.heightScale = 0.5f;  // stored value x height_scale, like r16 and hgt (issue 9: no division by 65535)
   s.extent = 640.0f;
   writeBytes(s.file, png16Gray(w, h, px));
   const Heightfield hf = lb::makeHeightfield(s);
@@ -271,9 +271,61 @@ TEST(Terrain, Png16Roundtrip) {
   ASSERT_EQ(hf.height, h);
   EXPECT_EQ(hf.extent, 640.0f);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) EXPECT_EQ(hf.at(x, y), float(px[size_t(y * w + x)]) / 65535.0f * 300.0f);
-  EXPECT_EQ(hf.maxHeight, 300.0f);
+    for (int x = 0; x < w; ++x) EXPECT_EQ(hf.at(x, y), float(px[size_t(y * w + x)]) * 0.5f);
+  EXPECT_EQ(hf.maxHeight, 65535.0f * 0.5f);
   EXPECT_EQ(hf.minHeight, 0.0f);
+}
+
+// The four file types agree: the same stored samples give the same heights (issue 9, item 4).
+TEST(Terrain, EveryFileTypeMeansStoredValueTimesHeightScale) {
+  const std::vector<uint16_t> px = {0, 1, 258, 8848, 4096, 77};
+  TerrainSpec png = fileSpec("png16", "same.png"), r16 = fileSpec("r16", "same.r16"), r32 = fileSpec("r32f", "same.r32f");
+  writeBytes(png.file, png16Gray(3, 2, px));
+  std::vector<unsigned char> b16, b32;
+  for (uint16_t v : px) {
+    b16.push_back((unsigned char)(v & 0xff)), b16.push_back((unsigned char)(v >> 8));
+    const float f = float(v);
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    for (int k = 0; k < 4; ++k) b32.push_back((unsigned char)(u >> (8 * k)));
+  }
+  writeBytes(r16.file, b16);
+  writeBytes(r32.file, b32);
+  r16.rawWidth = r32.rawWidth = 3;
+  r16.rawHeight = r32.rawHeight = 2;
+  png.heightScale = r16.heightScale = r32.heightScale = 2.0f;
+  const Heightfield a = lb::makeHeightfield(png), b = lb::makeHeightfield(r16), c = lb::makeHeightfield(r32);
+  for (size_t i = 0; i < px.size(); ++i) {
+    EXPECT_EQ(a.h[i], float(px[i]) * 2.0f) << i;
+    EXPECT_EQ(b.h[i], a.h[i]) << i;
+    EXPECT_EQ(c.h[i], a.h[i]) << i;
+  }
+}
+
+// Heights beyond +-kMaxAbsHeight (after height_scale) are rejected, not rendered as a blank frame.
+TEST(Terrain, AbsurdHeightsAreRejected) {
+  auto r32With = [&](float v) {
+    TerrainSpec s = fileSpec("r32f", "absurd.r32f");
+    s.rawWidth = 2, s.rawHeight = 2, s.heightScale = 1.0f;
+    const float vals[4] = {0.0f, 1.0f, v, 2.0f};
+    std::vector<unsigned char> b(16);
+    std::memcpy(b.data(), vals, 16);
+    writeBytes(s.file, b);
+    return s;
+  };
+  for (float v : {1e30f, -1e30f, 1.0001e5f}) {
+    const std::string msg = inputErrorOf([&] { lb::makeHeightfield(r32With(v)); });
+    EXPECT_NE(msg.find("sample (0, 1)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("+-1e5"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(lb::makeHeightfield(r32With(-1e5f)).minHeight, -1e5f);  // the bound itself is accepted
+  TerrainSpec r16 = fileSpec("r16", "absurd.r16");
+  r16.rawWidth = 2, r16.rawHeight = 2, r16.heightScale = 2.0f;  // 65535 x 2 > 1e5
+  writeBytes(r16.file, std::vector<unsigned char>(8, 0xff));
+  EXPECT_NE(inputErrorOf([&] { lb::makeHeightfield(r16); }).find("+-1e5"), std::string::npos);
+  TerrainSpec proc = proceduralSpec(17, 1);
+  proc.heightScale = 2e5f;
+  EXPECT_NE(inputErrorOf([&] { lb::makeHeightfield(proc); }).find("1e5"), std::string::npos);
 }
 
 TEST(Terrain, Png8BitIsRejected) {
@@ -286,7 +338,7 @@ TEST(Terrain, Png8BitIsRejected) {
 
 TEST(Terrain, RawR16AndR32fRoundtrip) {
   TerrainSpec s = fileSpec("r16", "h.r16");
-  s.rawWidth = 3, s.rawHeight = 2, s.heightScale = 2.0f;
+  s.rawWidth = 3, s.rawHeight = 2, s.heightScale = 1.5f;
   const std::vector<uint16_t> v16 = {0, 1, 258, 65535, 4096, 77};
   std::vector<unsigned char> b16;
   for (uint16_t v : v16) b16.push_back((unsigned char)(v & 0xff)), b16.push_back((unsigned char)(v >> 8));
@@ -294,8 +346,8 @@ TEST(Terrain, RawR16AndR32fRoundtrip) {
   Heightfield hf = lb::makeHeightfield(s);
   ASSERT_EQ(hf.width, 3);
   ASSERT_EQ(hf.height, 2);
-  for (size_t i = 0; i < v16.size(); ++i) EXPECT_EQ(hf.h[i], float(v16[i]) * 2.0f);
-  EXPECT_EQ(hf.at(0, 1), 65535.0f * 2.0f);
+  for (size_t i = 0; i < v16.size(); ++i) EXPECT_EQ(hf.h[i], float(v16[i]) * 1.5f);
+  EXPECT_EQ(hf.at(0, 1), 65535.0f * 1.5f);
 
   const std::vector<float> v32 = {-12.5f, 0.0f, 1e-3f, 3000.25f, 7.0f, -0.0f};
   std::vector<unsigned char> b32;
@@ -324,7 +376,8 @@ TEST(Terrain, RawSizeMismatchAndMissingDimensions) {
   EXPECT_NE(msg.find("expected 4*4*4 = 64 bytes, got 30"), std::string::npos) << msg;
   s.rawWidth = 0;
   msg = inputErrorOf([&] { lb::makeHeightfield(s); });
-  EXPECT_NE(msg.find("rawWidth and rawHeight"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--terrain-width"), std::string::npos) << msg;  // names options that exist
+  EXPECT_NE(msg.find("'width'"), std::string::npos) << msg;
 }
 
 TEST(Terrain, UnknownTypeListsValidTypes) {

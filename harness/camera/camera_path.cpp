@@ -87,23 +87,23 @@ std::string describe(const io::error::base& e, const std::string& text, unsigned
   using namespace io::error;
   const std::string expected = std::string(" (expected '") + kHeader + "')";
   if (auto* c = dynamic_cast<const extra_column_in_header*>(&e))
-    return std::string("header: unexpected column '") + c->column_name + "'" + expected;
+    return "header: unexpected column '" + printable(c->column_name) + "'" + expected;
   if (auto* c = dynamic_cast<const missing_column_in_header*>(&e))
-    return std::string("header: missing column '") + c->column_name + "'" + expected;
+    return "header: missing column '" + printable(c->column_name) + "'" + expected;
   if (auto* c = dynamic_cast<const duplicated_column_in_header*>(&e))
-    return std::string("header: column '") + c->column_name + "' appears twice";
+    return "header: column '" + printable(c->column_name) + "' appears twice";
   if (dynamic_cast<const header_missing*>(&e))
     return (line == 0 ? "file is empty" : "no header line before the end of the file") + expected;
   if (dynamic_cast<const too_few_columns*>(&e) || dynamic_cast<const too_many_columns*>(&e)) {
     const size_t got = splitFields(lineOf(text, line)).size();
     const std::vector<std::string> header = splitFields(lineOf(text, headerLine));
     if (got < header.size())
-      return "column '" + header[got] + "': missing (" + std::to_string(got) + " of " +
+      return "column '" + printable(header[got]) + "': missing (" + std::to_string(got) + " of " +
              std::to_string(kColumns) + " values)";
     return std::to_string(got) + " values, but the header has " + std::to_string(kColumns) + " columns";
   }
   if (dynamic_cast<const line_length_limit_exceeded*>(&e)) return "line too long";
-  return e.what();
+  return printable(e.what(), 200);
 }
 
 double parseNumber(const char* raw, const std::string& file, unsigned line, int col) {
@@ -114,9 +114,9 @@ double parseNumber(const char* raw, const std::string& file, unsigned line, int 
   if (*begin == '+' && end - begin > 1 && begin[1] != '-' && begin[1] != '+') ++begin;
   double v = 0;
   auto [ptr, ec] = std::from_chars(begin, end, v);
-  if (ec == std::errc::result_out_of_range) failColumn(file, line, col, "'" + std::string(raw) + "' is out of range");
-  if (ec != std::errc() || ptr != end) failColumn(file, line, col, "'" + std::string(raw) + "' is not a number");
-  if (!std::isfinite(v)) failColumn(file, line, col, "'" + std::string(raw) + "' is not finite");
+  if (ec == std::errc::result_out_of_range) failColumn(file, line, col, "'" + printable(raw) + "' is out of range");
+  if (ec != std::errc() || ptr != end) failColumn(file, line, col, "'" + printable(raw) + "' is not a number");
+  if (!std::isfinite(v)) failColumn(file, line, col, "'" + printable(raw) + "' is not finite");
   return v;
 }
 
@@ -145,9 +145,9 @@ Keyframe parseRow(const char* const (&field)[kColumns], const std::string& file,
   return k;
 }
 
-void checkFps(const CameraPath& path, double fps) {
+void checkFps(double fps) {
   if (!(fps > 0) || !std::isfinite(fps))
-    throw InputError(path.file + ": frame rate must be a positive number, got " + num(fps));
+    throw InputError("frame rate (fps) must be a positive finite number, got " + num(fps));
 }
 
 // Tangent in relative units per second. Interior keys use the Barry-Goldman (non-uniform
@@ -229,7 +229,7 @@ Keyframe interpolate(const CameraPath& path, double t) {
 }
 
 int frameCount(const CameraPath& path, double fps) {
-  checkFps(path, fps);
+  checkFps(fps);
   // The epsilon keeps a 10 s path at 60 fps from losing its last frame to 599.99999.
   const double frames = std::floor(path.duration() * fps + 1e-9);
   if (frames >= static_cast<double>(INT_MAX - 1))
@@ -238,7 +238,7 @@ int frameCount(const CameraPath& path, double fps) {
 }
 
 CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain) {
-  checkFps(path, fps);
+  checkFps(fps);
   if (path.keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
   const Keyframe k = interpolate(path, path.keys.front().time + frame / fps);
   const double extent = terrain.extent;

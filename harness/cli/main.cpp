@@ -1,5 +1,8 @@
 // lodbench: command-line entry point. Subcommands: list, devices, run, render, merge, report,
 // compare, ab, gbench.
+#include <unistd.h>
+
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -48,10 +51,53 @@ struct RenderArgs {
   std::string scheme = "sphere", path, out = "frame.png", device, terrainFile, terrainType = "procedural";
   std::vector<std::string> params;
   int frame = 0, width = 640, height = 360, grid = 32, size = 513;
+  int terrainWidth = 0, terrainHeight = 0;  // r16 / r32f: samples per row and rows
+  bool sizeOrSeedGiven = false;
   unsigned seed = 1;
   double fps = 30, extent = 1000, heightScale = -1;
   bool wireframe = false, heatmap = false, error = false, cracks = false, validation = false;
 };
+
+// The terrain a render's flags describe, as a config's "terrain" object would: flags the type does
+// not read are errors, not silently ignored.
+static TerrainSpec renderTerrain(const RenderArgs& a) {
+  TerrainSpec spec;
+  spec.type = a.terrainType;
+  const bool procedural = spec.type == "procedural", raw = spec.type == "r16" || spec.type == "r32f";
+  if (!procedural && spec.type != "hgt" && spec.type != "png16" && !raw)
+    throw InputError("--terrain '" + printable(spec.type) + "': not one of procedural, hgt, png16, r16, r32f");
+  if (procedural && !a.terrainFile.empty())
+    throw InputError("--terrain-file needs a file terrain type (--terrain hgt|png16|r16|r32f); procedural terrains are generated");
+  if (!procedural && a.terrainFile.empty()) throw InputError("--terrain " + spec.type + " needs --terrain-file FILE");
+  if (!procedural && a.sizeOrSeedGiven)
+    throw InputError("--size and --seed apply to procedural terrains only (--terrain " + spec.type + " reads its file)");
+  if (raw && (a.terrainWidth == 0 || a.terrainHeight == 0))
+    throw InputError("--terrain " + spec.type + " needs --terrain-width and --terrain-height (samples per row, rows)");
+  if (!raw && (a.terrainWidth != 0 || a.terrainHeight != 0))
+    throw InputError("--terrain-width and --terrain-height apply to r16 and r32f only (other types carry their size)");
+  spec.file = a.terrainFile;
+  spec.size = a.size;
+  spec.seed = a.seed;
+  spec.rawWidth = a.terrainWidth;
+  spec.rawHeight = a.terrainHeight;
+  spec.extent = float(a.extent);
+  if (!procedural) spec.heightScale = 1.0f;
+  if (a.heightScale >= 0) spec.heightScale = float(a.heightScale);
+  return spec;
+}
+
+// An output path that cannot be written fails now, not after minutes of rendering.
+static void checkOutputFile(const std::string& path, const char* flag) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(std::string(flag) + " '" + path + "' is a directory; give a file name");
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec))
+    throw InputError(std::string(flag) + " '" + path + "': directory '" + dir.string() + "' does not exist");
+  if (access(dir.c_str(), W_OK) != 0)
+    throw InputError(std::string(flag) + " '" + path + "': directory '" + dir.string() + "' is not writable");
+}
 
 static int renderCmd(const RenderArgs& a) {
   const Scheme* scheme = findScheme(a.scheme);
@@ -66,14 +112,9 @@ static int renderCmd(const RenderArgs& a) {
       throw InputError("--param '" + kv + "': value is not a number");
     }
   }
-  TerrainSpec spec;
-  spec.type = a.terrainType;
-  spec.file = a.terrainFile;
-  spec.size = a.size;
-  spec.seed = a.seed;
-  spec.extent = float(a.extent);
-  if (spec.type != "procedural") spec.heightScale = 1.0f;
-  if (a.heightScale >= 0) spec.heightScale = float(a.heightScale);
+  // Everything is checked before the device starts and the frame renders, so a typo costs nothing.
+  checkOutputFile(a.out, "--out");
+  TerrainSpec spec = renderTerrain(a);
   Heightfield terrain = makeHeightfield(spec);
   CameraPath path = loadCameraPath(a.path);
   int frames = frameCount(path, a.fps);
@@ -152,17 +193,44 @@ int main(int argc, char** argv) {
   render->add_option("--param", ra.params, "Scheme parameter name=value (repeatable)");
   render->add_option("--path", ra.path, "Camera path CSV")->required();
   render->add_option("--frame", ra.frame, "Frame index")->capture_default_str();
-  render->add_option("--fps", ra.fps, "Path sampling rate")->capture_default_str();
+  // CLI11's Range lets NaN through (every comparison with it is false), hence the explicit check.
+  auto finite = [](double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& v) -> std::string {
+          double d = 0;
+          try {
+            size_t used = 0;
+            d = std::stod(v, &used);
+            if (used != v.size()) return "'" + printable(v) + "' is not a number";
+          } catch (const std::exception&) {
+            return "'" + printable(v) + "' is not a number";
+          }
+          if (!std::isfinite(d) || d < lo || d > hi) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "%s is outside [%g, %g]", printable(v).c_str(), lo, hi);
+            return buf;
+          }
+          return "";
+        },
+        "FINITE");
+  };
+  render->add_option("--fps", ra.fps, "Path sampling rate (frames per second)")->capture_default_str()->check(finite(1, 1000));
   render->add_option("--out", ra.out, "Output PNG")->capture_default_str();
   render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--height", ra.height, "Image height")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--grid", ra.grid, "Patches per side")->capture_default_str()->check(CLI::Range(1, 1024));
   render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f")->capture_default_str();
   render->add_option("--terrain-file", ra.terrainFile, "Heightmap file for non-procedural terrains");
-  render->add_option("--size", ra.size, "Procedural terrain samples per side")->capture_default_str();
+  render->add_option("--terrain-width", ra.terrainWidth, "r16 / r32f: samples per row (the config's terrain 'width')")
+      ->check(CLI::Range(2, 65536));
+  render->add_option("--terrain-height", ra.terrainHeight, "r16 / r32f: number of rows (the config's terrain 'height')")
+      ->check(CLI::Range(2, 65536));
+  render->add_option("--size", ra.size, "Procedural terrain samples per side")->capture_default_str()->check(CLI::Range(2, 16385));
   render->add_option("--seed", ra.seed, "Procedural terrain seed")->capture_default_str();
-  render->add_option("--extent", ra.extent, "World extent of the terrain")->capture_default_str();
-  render->add_option("--height-scale", ra.heightScale, "Height scale (procedural: peak height; files: multiplier)");
+  render->add_option("--extent", ra.extent, "World extent of the terrain")->capture_default_str()->check(finite(1e-3, 1e9));
+  render->add_option("--height-scale", ra.heightScale,
+                     "Height scale (procedural: peak height, default 120; files: multiplier on the stored values, default 1)")
+      ->check(finite(0, 1e9));
   render->add_option("--device", ra.device, "Vulkan device: name substring or index");
   render->add_flag("--validation", ra.validation, "Enable the Vulkan validation layer");
   auto* modes = render->add_option_group("mode", "Image mode (default: shaded)");
@@ -212,11 +280,32 @@ int main(int argc, char** argv) {
   std::string gbenchDir;
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
 
+  // CLI11 answers a mistyped subcommand with "A subcommand is required"; say what is wrong instead.
+  if (argc < 2) {
+    app.name("lodbench");
+    std::printf("%s", app.help().c_str());
+    return 2;
+  }
+  if (argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    const CLI::App& constApp = app;  // the const overload lists every subcommand, parsed or not
+    for (const CLI::App* sub : constApp.get_subcommands([](const CLI::App*) { return true; })) {
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+      found = found || sub->get_name() == argv[1];
+    }
+    if (!found) {
+      std::fprintf(stderr, "lodbench: error: unknown subcommand '%s' (known: %s; see lodbench --help)\n",
+                   printable(argv[1]).c_str(), known.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  ra.sizeOrSeedGiven = render->count("--size") + render->count("--seed") > 0;
   try {
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
@@ -251,6 +340,8 @@ int main(int argc, char** argv) {
         return 0;
       }
       ro.progress = !quiet;
+      // An unmatched --device (or a missing validation layer) must fail before runSweep creates the run directory.
+      checkContextOptions({config.device, ro.validation});
       // Ctrl-C / kill: finish the current frame, keep every finished case, exit 130.
       std::signal(SIGINT, [](int) { requestStop(); });
       std::signal(SIGTERM, [](int) { requestStop(); });

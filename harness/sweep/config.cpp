@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "camera/camera_path.h"
 #include "error.h"
 #include "results/case_identity.h"
 #include "schemes/registry.h"
 #include "sweep/json_lines.h"
+#include "sweep/json_strict.h"
 
 namespace lb {
 namespace {
@@ -32,11 +35,11 @@ struct Reader {
       if (!allowed.count(k)) {
         std::string list;
         for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(ptr + "/" + k, "unknown key (allowed: " + list + ")");
+        fail(ptr + "/" + printable(k), "unknown key (allowed: " + list + ")");
       }
   }
   double number(const json& v, const std::string& ptr, double lo, double hi) const {
-    if (!v.is_number()) fail(ptr, "expected a number, got " + v.dump());
+    if (!v.is_number()) fail(ptr, "expected a number, got " + printable(v.dump()));
     double d = v.get<double>();
     if (!std::isfinite(d) || d < lo || d > hi) {
       std::ostringstream s;
@@ -51,7 +54,7 @@ struct Reader {
     return int(d);
   }
   std::string string(const json& v, const std::string& ptr) const {
-    if (!v.is_string()) fail(ptr, "expected a string, got " + v.dump());
+    if (!v.is_string()) fail(ptr, "expected a string, got " + printable(v.dump()));
     return v.get<std::string>();
   }
 };
@@ -61,25 +64,55 @@ std::string resolvePath(const std::string& base, const std::string& p) {
   return base + "/" + p;
 }
 
+// A file a config names: it must exist and be a regular file (a directory opens, then reads as empty).
+std::string inputFile(const Reader& r, const json& v, const std::string& ptr, const std::string& base, const char* what) {
+  std::string path = resolvePath(base, r.string(v, ptr));
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);
+  if (!std::ifstream(path)) r.fail(ptr, "cannot open " + std::string(what) + " '" + printable(path, 200) + "'");
+  return path;
+}
+
 std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
   r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
   static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f"};
-  if (!kTypes.count(spec.type)) r.fail(ptr + "/type", "'" + spec.type + "' is not one of procedural, hgt, png16, r16, r32f");
-  if (spec.type != "procedural") {
+  if (!kTypes.count(spec.type))
+    r.fail(ptr + "/type", "'" + printable(spec.type) + "' is not one of procedural, hgt, png16, r16, r32f");
+  // A field the type does not read would be silently ignored: reject it instead.
+  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural";
+  auto reason = [](const std::string& k) {
+    if (k == "file") return "procedural terrains are generated, not read";
+    if (k == "size" || k == "seed") return "only procedural terrains are generated from a size and seed";
+    return "only r16 and r32f take a width and height; other files carry their size";
+  };
+  for (const std::string k : {"file", "size", "seed", "width", "height"}) {
+    const bool used = k == "file" ? !procedural : (k == "size" || k == "seed") ? procedural : raw;
+    if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
+  }
+  if (!procedural) {
     if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
-    spec.file = resolvePath(base, r.string(t["file"], ptr + "/file"));
-    if (!std::ifstream(spec.file)) r.fail(ptr + "/file", "cannot open '" + spec.file + "'");
+    spec.file = inputFile(r, t["file"], ptr + "/file", base, "heightmap file");
     spec.heightScale = 1.0f;
   }
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
   if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
-  if (t.contains("height_scale")) spec.heightScale = float(r.number(t["height_scale"], ptr + "/height_scale", 0, 1e9));
+  // Procedural heights span [0, height_scale], so its bound is the height bound (kMaxAbsHeight);
+  // for files the product with the stored values is checked when the file is read below.
+  if (t.contains("height_scale"))
+    spec.heightScale = float(r.number(t["height_scale"], ptr + "/height_scale", 0, procedural ? kMaxAbsHeight : 1e9));
   if (t.contains("width")) spec.rawWidth = r.integer(t["width"], ptr + "/width", 2, 65536);
   if (t.contains("height")) spec.rawHeight = r.integer(t["height"], ptr + "/height", 2, 65536);
-  if ((spec.type == "r16" || spec.type == "r32f") && (spec.rawWidth == 0 || spec.rawHeight == 0))
-    r.fail(ptr, "raw terrain needs 'width' and 'height'");
+  if (raw && (spec.rawWidth == 0 || spec.rawHeight == 0)) r.fail(ptr, "raw terrain needs 'width' and 'height'");
+  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
+  if (!procedural) {
+    try {
+      loadHeightfield(spec);
+    } catch (const InputError& e) {
+      r.fail(ptr + "/file", e.what());
+    }
+  }
   std::vector<TerrainSpec> out;
   if (t.contains("seed") && t["seed"].is_array()) {
     for (size_t i = 0; i < t["seed"].size(); ++i) {
@@ -94,6 +127,23 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
   return out;
 }
 
+// Parameters named <x>min / <x>max bound a range whose width divides (distance falloff): an empty
+// range is rejected for every scheme alike, so one scheme cannot accept what another refuses.
+void requireRanges(const Reader& r, const SchemeInfo& info, const ParamValues& pv, const std::string& ptr) {
+  for (auto& p : info.params) {
+    const size_t n = p.name.size();
+    if (n < 4 || p.name.compare(n - 3, 3, "min") != 0) continue;
+    const std::string hi = p.name.substr(0, n - 3) + "max";
+    auto lo = pv.find(p.name), up = pv.find(hi);
+    if (lo == pv.end() || up == pv.end()) continue;
+    if (!(lo->second < up->second)) {
+      std::ostringstream s;
+      s << info.name << ": " << p.name << " (" << lo->second << ") must be less than " << hi << " (" << up->second << ")";
+      r.fail(ptr, s.str());
+    }
+  }
+}
+
 SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) {
   SchemeEntry e;
   json params = json::object();
@@ -106,7 +156,8 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
     if (s.contains("params")) params = s["params"];
   }
   const Scheme* scheme = findScheme(e.name);
-  if (!scheme) r.fail(ptr + (s.is_string() ? "" : "/name"), "unknown scheme '" + e.name + "' (known: " + schemeNames() + ")");
+  if (!scheme)
+    r.fail(ptr + (s.is_string() ? "" : "/name"), "unknown scheme '" + printable(e.name) + "' (known: " + schemeNames() + ")");
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
   e.variants = {ParamValues{}};
@@ -135,11 +186,14 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
   }
   // Cross-parameter checks (e.g. dmin < dmax) need every parameter of a variant.
   for (auto& pv : e.variants) {
+    ParamValues full;
     try {
-      scheme->validate(resolveParams(scheme->info(), pv));
+      full = resolveParams(scheme->info(), pv);
+      scheme->validate(full);
     } catch (const InputError& err) {
       r.fail(ptr + "/params", err.what());
     }
+    requireRanges(r, scheme->info(), full, ptr + "/params");
   }
   return e;
 }
@@ -147,21 +201,7 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
 }  // namespace
 
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    size_t line = 1, col = 1;
-    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        col = 1;
-      } else {
-        ++col;
-      }
-    }
-    throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + e.what());
-  }
+  json j = parseJsonStrict(text, file);
   Reader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
                      "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
@@ -208,9 +248,16 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     }
   }
   if (c.terrains.empty()) c.terrains.push_back(TerrainSpec{});
+  std::vector<int> pathFrames;  // frames each path gives at this fps and max_frames
   auto addPath = [&](const json& p, const std::string& ptr) {
-    std::string path = resolvePath(baseDir, r.string(p, ptr));
-    if (!std::ifstream(path)) r.fail(ptr, "cannot open camera path '" + path + "'");
+    std::string path = inputFile(r, p, ptr, baseDir, "camera path");
+    // Parse it now: a malformed CSV stops the run before any case (with the CSV's own line).
+    try {
+      int frames = frameCount(loadCameraPath(path), c.fps);
+      pathFrames.push_back(c.maxFrames > 0 ? std::min(frames, c.maxFrames) : frames);
+    } catch (const InputError& e) {
+      r.fail(ptr, e.what());
+    }
     c.paths.push_back(path);
   };
   if (j.contains("path")) addPath(j["path"], "/path");
@@ -228,17 +275,27 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     r.onlyKeys(im, "/images", {"frames", "modes"});
     if (im.contains("frames")) {
       if (!im["frames"].is_array()) r.fail("/images/frames", "expected an array of frame indices");
-      for (size_t i = 0; i < im["frames"].size(); ++i)
-        c.images.frames.push_back(r.integer(im["frames"][i], "/images/frames/" + std::to_string(i), -1000000, 1000000));
+      for (size_t i = 0; i < im["frames"].size(); ++i) {
+        const std::string ptr = "/images/frames/" + std::to_string(i);
+        int f = r.integer(im["frames"][i], ptr, -1000000, 1000000);
+        // A frame past a path's end would be silently left out of that path's cases.
+        for (size_t k = 0; k < pathFrames.size(); ++k)
+          if (f >= pathFrames[k] || f < -pathFrames[k])
+            r.fail(ptr, std::to_string(f) + " is outside the " + std::to_string(pathFrames[k]) + " frames of '" +
+                            c.paths[k] + "' (valid: 0.." + std::to_string(pathFrames[k] - 1) + ", or -1..-" +
+                            std::to_string(pathFrames[k]) + " from the end)");
+        c.images.frames.push_back(f);
+      }
     }
     c.images.modes = {"shaded"};
     if (im.contains("modes")) {
       c.images.modes.clear();
+      if (!im["modes"].is_array()) r.fail("/images/modes", "expected an array of image modes");
       for (size_t i = 0; i < im["modes"].size(); ++i) {
         std::string m = r.string(im["modes"][i], "/images/modes/" + std::to_string(i));
         if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
           r.fail("/images/modes/" + std::to_string(i),
-                 "'" + m + "' is not one of shaded, heatmap, wireframe, error, cracks");
+                 "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
         c.images.modes.push_back(m);
       }
     }
@@ -254,7 +311,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
         std::string p = r.string(me["passes"][i], "/measure/passes/" + std::to_string(i));
         if (!allMeasurePasses().count(p))
           r.fail("/measure/passes/" + std::to_string(i),
-                 "'" + p + "' is not one of histogram, error, image, cracks, popping, surplus");
+                 "'" + printable(p) + "' is not one of histogram, error, image, cracks, popping, surplus");
         c.measure.passes.insert(p);
       }
     }
@@ -267,7 +324,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
     c.match.metric = r.string(m["metric"], "/match/metric");
     if (c.match.metric != "triangles" && c.match.metric != "err_mean_px")
-      r.fail("/match/metric", "'" + c.match.metric + "' is not one of triangles, err_mean_px");
+      r.fail("/match/metric", "'" + printable(c.match.metric) + "' is not one of triangles, err_mean_px");
     c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
     if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
     if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);
@@ -276,6 +333,8 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
 }
 
 Config loadConfig(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw InputError("config '" + file + "' is a directory, not a JSON file");
   std::ifstream f(file);
   if (!f) throw InputError("cannot open config '" + file + "'");
   std::stringstream ss;

@@ -174,6 +174,9 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
                      std::to_string(kMinSize) + ", " + std::to_string(kMaxSize) + "]");
   requireFinite(spec.extent, "extent", false);
   requireFinite(spec.heightScale, "heightScale", true);  // 0 gives a flat plane, a valid baseline
+  if (spec.heightScale > kMaxAbsHeight)
+    throw InputError("terrain: procedural heightScale " + std::to_string(spec.heightScale) +
+                     " is above the largest height accepted, 1e5 (see kMaxAbsHeight)");
 
   Octave oct[kOctaves];
   float amplitude = 1.0f;

@@ -32,11 +32,21 @@ struct TerrainSpec {
   float heightScale = 120.0f;       // procedural: peak height; files: multiplier on stored values
 };
 
+// Largest |height| accepted, in world units after heightScale. Earth's relief spans -11 km to
+// +8.8 km, so 1e5 leaves 5x headroom for metres (or a 10x exaggeration of real relief), while
+// float32 still resolves 2^-24 * 1e5 ~ 0.006 units there: the error pass, the eye clamp and the
+// projections stay meaningful. Beyond it (e.g. r32f values of 1e30) the terrain leaves every
+// frustum or overflows squared distances, and the metrics would report a perfect image.
+constexpr float kMaxAbsHeight = 1e5f;
+
 // Deterministic ridged + fBm hybrid (Musgrave) in [0,1], scaled by heightScale. Same seed -> same bits.
 Heightfield makeProcedural(const TerrainSpec& spec);
 // Loads .hgt (SRTM big-endian int16, 1201^2 or 3601^2, voids -32768 filled), 16-bit PNG, raw R16 / R32F.
-// Throws lb::InputError naming the file and the problem.
+// Every type means "stored value x heightScale". Throws lb::InputError naming the file and the
+// problem (wrong size, non-finite sample, |height| > kMaxAbsHeight, ...).
 Heightfield loadHeightfield(const TerrainSpec& spec);
+// The same from the file's bytes (spec.file only names it in messages); the fuzz targets call this.
+Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigned char>& bytes);
 // Dispatches on spec.type.
 Heightfield makeHeightfield(const TerrainSpec& spec);
 

@@ -1,6 +1,7 @@
 // Heightfield files: SRTM .hgt, 16-bit grayscale PNG, raw little-endian R16 / R32F.
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -17,8 +18,11 @@ namespace lb {
 namespace {
 
 constexpr int16_t kHgtVoid = -32768;
+constexpr int kMaxPngSide = 16385;
 
 std::vector<unsigned char> readFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a heightmap file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open " + path);
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -79,8 +83,7 @@ void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
 // SRTM: no header; N x N big-endian int16 metres, first row = north edge, first column = west.
 // Orientation in lodbench: file row r becomes z = r and column c becomes x = c, so +x points east
 // and +z points south (north is at z = 0).
-Heightfield loadHgt(const TerrainSpec& spec) {
-  const std::vector<unsigned char> bytes = readFile(spec.file);
+Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
   int n = 0;
   for (int candidate : {1201, 3601})
     if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
@@ -107,8 +110,24 @@ Heightfield loadHgt(const TerrainSpec& spec) {
   return hf;
 }
 
-Heightfield loadPng16(const TerrainSpec& spec) {
-  const std::vector<unsigned char> bytes = readFile(spec.file);
+// stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that
+// UBSan reports; found by fuzzing, tests/fuzz/regressions/png16). Such a chunk is legal but no
+// encoder writes one, so refuse the file rather than hand it to the decoder.
+void rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  auto be32 = [&](size_t at) {
+    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+  };
+  for (size_t at = 8; at + 8 <= bytes.size();) {  // after the 8-byte signature: length, type, data, crc
+    const uint32_t len = be32(at);
+    if (len == 0 && std::memcmp(&bytes[at + 4], "IDAT", 4) == 0)
+      throw InputError(spec.file + ": PNG has an empty IDAT chunk at byte " + std::to_string(at) + " (not supported)");
+    if (len > bytes.size()) break;  // the decoder reports the truncation
+    at += 12 + size_t(len);
+  }
+}
+
+Heightfield loadPng16(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  rejectEmptyIdat(spec, bytes);
   if (bytes.size() > size_t(INT32_MAX)) throw InputError(spec.file + ": file too large for a PNG heightmap");
   const int len = int(bytes.size());
   int w = 0, h = 0, comp = 0;
@@ -119,21 +138,25 @@ Heightfield loadPng16(const TerrainSpec& spec) {
                      (stbi_is_16_bit_from_memory(bytes.data(), len) ? "16" : "8") + "-bit)");
   if (w < 2 || h < 2)
     throw InputError(spec.file + ": " + std::to_string(w) + "x" + std::to_string(h) + " is too small (need 2x2)");
+  // The largest procedural size too; also keeps a forged header from asking for gigabytes.
+  if (w > kMaxPngSide || h > kMaxPngSide)
+    throw InputError(spec.file + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
+                     std::to_string(kMaxPngSide) + " samples per side");
   stbi_us* pixels = stbi_load_16_from_memory(bytes.data(), len, &w, &h, &comp, 1);
   if (!pixels) throw InputError(spec.file + ": cannot decode PNG (" + std::string(stbi_failure_reason()) + ")");
   Heightfield hf = emptyField(spec, w, h);
-  // Divide first so that 65535 maps to exactly heightScale.
-  for (size_t i = 0; i < hf.h.size(); ++i) hf.h[i] = float(pixels[i]) / 65535.0f * spec.heightScale;
+  // Stored value x heightScale, like r16 and hgt: a 16-bit DEM stores metres (or decimetres with 0.1).
+  for (size_t i = 0; i < hf.h.size(); ++i) hf.h[i] = float(pixels[i]) * spec.heightScale;
   stbi_image_free(pixels);
   return hf;
 }
 
 // Raw dumps carry no header, so the user supplies the size and it must match the file exactly.
-Heightfield loadRaw(const TerrainSpec& spec, size_t bytesPerSample) {
+Heightfield loadRaw(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, size_t bytesPerSample) {
   if (spec.rawWidth < 2 || spec.rawHeight < 2)
-    throw InputError(spec.file + ": " + spec.type + " needs terrain rawWidth and rawHeight > 1 (got " +
-                     std::to_string(spec.rawWidth) + "x" + std::to_string(spec.rawHeight) + ")");
-  const std::vector<unsigned char> bytes = readFile(spec.file);
+    throw InputError(spec.file + ": " + spec.type + " needs a width and height of at least 2 samples (config: terrain " +
+                     "'width' and 'height'; render: --terrain-width and --terrain-height), got " +
+                     std::to_string(spec.rawWidth) + "x" + std::to_string(spec.rawHeight));
   const size_t expected = size_t(spec.rawWidth) * size_t(spec.rawHeight) * bytesPerSample;
   if (bytes.size() != expected)
     throw InputError(spec.file + ": expected " + std::to_string(spec.rawWidth) + "*" +
@@ -157,25 +180,40 @@ Heightfield loadRaw(const TerrainSpec& spec, size_t bytesPerSample) {
   return hf;
 }
 
+// Non-finite samples are caught per type above; this bounds the product with heightScale.
+void checkHeights(const TerrainSpec& spec, const Heightfield& hf) {
+  for (size_t i = 0; i < hf.h.size(); ++i)
+    if (!(std::fabs(hf.h[i]) <= kMaxAbsHeight))
+      throw InputError(spec.file + ": sample (" + std::to_string(i % size_t(hf.width)) + ", " +
+                       std::to_string(i / size_t(hf.width)) + ") is " + std::to_string(hf.h[i]) +
+                       " after height_scale; heights must lie within +-1e5 (float32 precision and "
+                       "10x Earth's relief in metres): check the file type and height_scale");
+}
+
 }  // namespace
 
 Heightfield loadHeightfield(const TerrainSpec& spec) {
   if (spec.file.empty()) throw InputError("terrain: type '" + spec.type + "' needs a file");
+  return decodeHeightfield(spec, readFile(spec.file));
+}
+
+Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
   if (!(std::isfinite(spec.extent) && spec.extent > 0.0f))
     throw InputError(spec.file + ": terrain extent " + std::to_string(spec.extent) + " must be positive and finite");
   if (!(std::isfinite(spec.heightScale) && spec.heightScale >= 0.0f))
     throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) + " must be finite and >= 0");
   Heightfield hf;
   if (spec.type == "hgt")
-    hf = loadHgt(spec);
+    hf = loadHgt(spec, bytes);
   else if (spec.type == "png16")
-    hf = loadPng16(spec);
+    hf = loadPng16(spec, bytes);
   else if (spec.type == "r16")
-    hf = loadRaw(spec, 2);
+    hf = loadRaw(spec, bytes, 2);
   else if (spec.type == "r32f")
-    hf = loadRaw(spec, 4);
+    hf = loadRaw(spec, bytes, 4);
   else
     throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f)");
+  checkHeights(spec, hf);
   hf.updateRange();
   return hf;
 }

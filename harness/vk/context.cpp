@@ -5,6 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "error.h"
 #include "vk/vk_check.h"
 
 namespace lb {
@@ -157,7 +158,7 @@ static int choose(const std::vector<DeviceCandidate>& cands, const std::string& 
   bool isIndex = !want.empty() && want.find_first_not_of("0123456789") == std::string::npos;
   for (auto& c : cands) {
     bool match = want.empty() ? lower(c.name).find("llvmpipe") != std::string::npos
-                 : isIndex    ? c.index == std::stoi(want)
+                 : isIndex    ? want.size() <= 9 && c.index == std::stoi(want)
                               : lower(c.name).find(lower(want)) != std::string::npos;
     if (match && c.suitable) return c.index;
   }
@@ -171,14 +172,35 @@ static int choose(const std::vector<DeviceCandidate>& cands, const std::string& 
   return -1;
 }
 
-void createContext(Context& ctx, const ContextOptions& options) {
+// Validation asked for by the option or by LODBENCH_VALIDATION (set and not "0").
+static bool validationRequested(const ContextOptions& options, std::string& how) {
   const char* env = std::getenv("LODBENCH_VALIDATION");
-  bool validation = options.validation || (env && std::strcmp(env, "0") != 0 && *env);
-  if (validation && !hasLayer("VK_LAYER_KHRONOS_validation")) {
-    std::fprintf(stderr, "warning: validation requested but VK_LAYER_KHRONOS_validation is not installed "
-                         "(apt-get install vulkan-validationlayers)\n");
-    validation = false;
-  }
+  how = options.validation ? "--validation" : env ? "LODBENCH_VALIDATION=" + std::string(env) : "";
+  return options.validation || (env && std::strcmp(env, "0") != 0 && *env);
+}
+
+// Asked-for validation that silently turns itself off would let "zero validation messages"
+// checks pass by comparing 0 with 0, so a missing layer is an error.
+static void requireLayerIfAsked(const ContextOptions& options) {
+  std::string how;
+  if (validationRequested(options, how) && !hasLayer("VK_LAYER_KHRONOS_validation"))
+    throw std::runtime_error("validation was requested (" + how +
+                             ") but the layer VK_LAYER_KHRONOS_validation is not installed: "
+                             "apt-get install vulkan-validationlayers (or bash scripts/install-deps.sh), "
+                             "or unset LODBENCH_VALIDATION");
+}
+
+void checkContextOptions(const ContextOptions& options) {
+  requireLayerIfAsked(options);
+  if (options.device.empty()) return;
+  std::string why;
+  if (choose(listDevices(), options.device, why) < 0) throw InputError(why);
+}
+
+void createContext(Context& ctx, const ContextOptions& options) {
+  std::string how;
+  const bool validation = validationRequested(options, how);
+  requireLayerIfAsked(options);
   bool debugUtils = false;
   ctx.instance = makeInstance(validation, &debugUtils);
   ctx.validationEnabled = validation;
@@ -198,6 +220,8 @@ void createContext(Context& ctx, const ContextOptions& options) {
   int idx = choose(ctx.candidates, options.device, why);
   if (idx < 0) {
     destroyContext(ctx);
+    // A device the user named that does not exist is bad input; none at all is the machine's problem.
+    if (!options.device.empty()) throw InputError(why);
     throw std::runtime_error(why);
   }
   ctx.physicalDevice = pds[size_t(idx)];

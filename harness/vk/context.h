@@ -40,8 +40,14 @@ struct Context {
   std::atomic<int> validationWarnings{0};
 };
 
-// Throws std::runtime_error with every device's rejection reason when none fits.
+// Throws with every device's rejection reason when none fits: lb::InputError when options.device
+// names no suitable device, std::runtime_error when there is none at all or when validation is
+// asked for (option or LODBENCH_VALIDATION) and the layer is missing.
 void createContext(Context& ctx, const ContextOptions& options);
+// What createContext would refuse, checked without creating a device (cheap enough to call before
+// creating any output): lb::InputError (every device's reason) when options.device names no
+// suitable device, std::runtime_error when validation is asked for and the layer is missing.
+void checkContextOptions(const ContextOptions& options);
 void destroyContext(Context& ctx);
 // Lists devices and whether each is suitable (creates and destroys its own instance).
 std::vector<DeviceCandidate> listDevices();
