@@ -12,6 +12,7 @@ const Scheme& phongScheme();
 const Scheme& distanceScheme();
 const Scheme& referenceScheme();
 const Scheme& planeFitScheme();
+const Scheme& sphereEdgeScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
@@ -24,6 +25,7 @@ const std::vector<const Scheme*>& allSchemes() {
       &distanceScheme(),
       &referenceScheme(),
       &planeFitScheme(),
+      &sphereEdgeScheme(),
   };
   return schemes;
 }

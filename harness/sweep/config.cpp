@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "terrain/generators.h"
 #include "schemes/registry.h"
 #include "sweep/json_lines.h"
 
@@ -59,22 +60,29 @@ std::string resolvePath(const std::string& base, const std::string& p) {
 }
 
 std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height"});
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f"};
-  if (!kTypes.count(spec.type)) r.fail(ptr + "/type", "'" + spec.type + "' is not one of procedural, hgt, png16, r16, r32f");
-  if (spec.type != "procedural") {
+  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f", "spikes", "cliff", "flat", "voids"};
+  if (!kTypes.count(spec.type))
+    r.fail(ptr + "/type", "'" + spec.type + "' is not one of procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids");
+  if (spec.type != "procedural" && !isGeneratedTerrain(spec.type)) {
     if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
     spec.file = resolvePath(base, r.string(t["file"], ptr + "/file"));
     if (!std::ifstream(spec.file)) r.fail(ptr + "/file", "cannot open '" + spec.file + "'");
     spec.heightScale = 1.0f;
   }
+  if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
   if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
   if (t.contains("height_scale")) spec.heightScale = float(r.number(t["height_scale"], ptr + "/height_scale", 0, 1e9));
   if (t.contains("width")) spec.rawWidth = r.integer(t["width"], ptr + "/width", 2, 65536);
   if (t.contains("height")) spec.rawHeight = r.integer(t["height"], ptr + "/height", 2, 65536);
+  if (t.contains("origin")) {  // [x, z]: world position of the terrain's corner (scenario "far from the origin")
+    if (!t["origin"].is_array() || t["origin"].size() != 2) r.fail(ptr + "/origin", "expected [x, z]");
+    spec.originX = r.number(t["origin"][0], ptr + "/origin/0", -1e8, 1e8);
+    spec.originZ = r.number(t["origin"][1], ptr + "/origin/1", -1e8, 1e8);
+  }
   if ((spec.type == "r16" || spec.type == "r32f") && (spec.rawWidth == 0 || spec.rawHeight == 0))
     r.fail(ptr, "raw terrain needs 'width' and 'height'");
   std::vector<TerrainSpec> out;
@@ -282,7 +290,15 @@ Config loadConfig(const std::string& file) {
 }
 
 std::string terrainLabel(const TerrainSpec& t) {
+  if (t.originX != 0 || t.originZ != 0) {
+    TerrainSpec atOrigin = t;
+    atOrigin.originX = atOrigin.originZ = 0;
+    // Whole metres keep the label free of exponents ("1e+07").
+    return terrainLabel(atOrigin) + "-at" + std::to_string(std::llround(t.originX)) + "_" +
+           std::to_string(std::llround(t.originZ));
+  }
   if (t.type == "procedural") return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed);
+  if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
   auto slash = t.file.find_last_of('/');
   std::string stem = t.file.substr(slash == std::string::npos ? 0 : slash + 1);
   return stem.substr(0, stem.find('.'));

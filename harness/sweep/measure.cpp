@@ -96,7 +96,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_max_px", e.empty() ? kNan : s.max);
     // Surplus: the oracle's smallest uniform level per patch meeting this frame's p95 error.
     if (spec.on("surplus") && !e.empty()) {
-      CameraMatrices cam = cameraMatrices(current, float(rs.width) / float(rs.height), terrain.extent);
+      CameraMatrices cam =
+          cameraMatrices(terrainLocalPose(current, terrain), float(rs.width) / float(rs.height), terrain.extent);
       OracleResult o = surplusOracle(terrain, rs.grid, cam, rs.width, rs.height, s.p95);
       set("surplus", o.triangles ? double(live.stats.clipInvocations) / double(o.triangles) : kNan);
     }
@@ -120,7 +121,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_p99", pop.p99);
     set("pop_changed", double(pop.changed));
   }
-  set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
+  set("saturated_patches", saturatedPatches(levels, scheme.partitioning(params)));
   return m;
 }
 
