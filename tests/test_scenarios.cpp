@@ -98,10 +98,12 @@ TEST(ScenarioConfigs, AtLeastEightEachDescribedValidAndDryRunClean) {
     for (const char* s : {"nvidia-dx11", "practical-d3d11", "rapp-thesis", "amd-detail", "design section"})
       seed = seed || d.find(s) != std::string::npos;
     EXPECT_TRUE(seed) << "description must name the seed section";
-    // Every scheme of the registry takes part.
+    // Every scheme of the registry takes part, except `reference`: its images are the image metrics'
+    // ground truth anyway (ReferenceCache), and as a timed case at level 64 it took 80% of a sweep.
     std::set<std::string> schemes;
     for (auto& e : c.schemes) schemes.insert(e.name);
-    for (const Scheme* s : allSchemes()) EXPECT_TRUE(schemes.count(s->info().name)) << s->info().name;
+    for (const Scheme* s : allSchemes())
+      if (s->info().name != "reference") EXPECT_TRUE(schemes.count(s->info().name)) << s->info().name;
     // Terrains build and paths load (dry-run checks neither).
     for (const TerrainSpec& t : c.terrains) EXPECT_NO_THROW(makeHeightfield(t)) << terrainLabel(t);
     for (const std::string& p : c.paths) EXPECT_NO_THROW(loadCameraPath(p)) << p;
