@@ -63,9 +63,11 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
   r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f", "spikes", "cliff", "flat", "voids"};
+  static const std::set<std::string> kTypes = {"procedural", "hgt",    "png16", "r16",  "r32f",
+                                                "spikes",     "cliff", "flat",  "voids"};
   if (!kTypes.count(spec.type))
-    r.fail(ptr + "/type", "'" + spec.type + "' is not one of procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids");
+    r.fail(ptr + "/type",
+           "'" + spec.type + "' is not one of procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids");
   if (spec.type != "procedural" && !isGeneratedTerrain(spec.type)) {
     if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
     spec.file = resolvePath(base, r.string(t["file"], ptr + "/file"));

@@ -82,7 +82,8 @@ Heightfield makeCliff(const TerrainSpec& spec) {
     row[c + 1] = row[c];
   }
   for (int z = 0; z < hf.height; ++z)
-    for (int x = c + 1; x < hf.width; ++x) hf.h[size_t(z) * size_t(hf.width) + size_t(x)] += kCliffStep * spec.heightScale;
+    for (int x = c + 1; x < hf.width; ++x)
+      hf.h[size_t(z) * size_t(hf.width) + size_t(x)] += kCliffStep * spec.heightScale;
   hf.updateRange();
   return hf;
 }

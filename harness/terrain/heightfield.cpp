@@ -227,7 +227,8 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
   if (isGeneratedTerrain(spec.type)) return placed(makeGeneratedTerrain(spec));
   if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f")
     return placed(loadHeightfield(spec));
-  throw InputError("terrain: unknown type '" + spec.type + "' (valid types: procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids)");
+  throw InputError("terrain: unknown type '" + spec.type +
+                   "' (valid types: procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids)");
 }
 
 }  // namespace lb
