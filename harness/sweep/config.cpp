@@ -300,6 +300,7 @@ std::string terrainLabel(const TerrainSpec& t) {
            std::to_string(std::llround(t.originZ));
   }
   if (t.type == "procedural") return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed);
+  if (t.type == "voids") return "voids1201s" + std::to_string(t.seed);  // the tile's size, not t.size
   if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
   auto slash = t.file.find_last_of('/');
   std::string stem = t.file.substr(slash == std::string::npos ? 0 : slash + 1);
