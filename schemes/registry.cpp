@@ -13,6 +13,7 @@ const Scheme& distanceScheme();
 const Scheme& referenceScheme();
 const Scheme& planeFitScheme();
 const Scheme& errBoundScheme();
+const Scheme& sphereEdgeScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
@@ -26,6 +27,7 @@ const std::vector<const Scheme*>& allSchemes() {
       &referenceScheme(),
       &planeFitScheme(),
       &errBoundScheme(),
+      &sphereEdgeScheme(),
   };
   return schemes;
 }

@@ -7,10 +7,11 @@ float schemeParam(int i) { return frame.params[i / 4][i % 4]; }
 
 float terrainExtent() { return frame.terrain.x; }
 
-// Manual bilinear with texelFetch so CPU metrics can reproduce it exactly.
+// Manual bilinear with texelFetch so CPU metrics can reproduce it exactly (at the origin; a far
+// terrain origin rounds worldXZ first, which is the precision loss the far-origin scenario shows).
 float terrainHeight(vec2 worldXZ) {
   ivec2 size = textureSize(heightMap, 0);
-  vec2 t = clamp(worldXZ / frame.terrain.x, 0.0, 1.0) * vec2(size - 1);
+  vec2 t = clamp((worldXZ - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * vec2(size - 1);
   ivec2 i0 = min(ivec2(floor(t)), max(size - 2, ivec2(0)));
   vec2 f = t - vec2(i0);
   ivec2 i1 = min(i0 + 1, size - 1);

@@ -47,8 +47,9 @@ struct FrameUniforms {
   glm::vec4 terrain;    // extent, grid patches per side, heightfield width, heightfield height
   glm::vec4 light;      // xyz: direction towards the light
   glm::vec4 params[LB_SCHEME_PARAM_VEC4S];
+  glm::vec4 origin;     // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
 };
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16, "std140 mirror");
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 16, "std140 mirror");
 struct DrawPush {
   uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw
   uint32_t pad[3];
@@ -76,6 +77,7 @@ layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
   vec4 terrain;
   vec4 light;
   vec4 params[LB_SCHEME_PARAM_VEC4S];
+  vec4 origin;
 } frame;
 layout(push_constant) uniform DrawPush {
   uint firstPatch;

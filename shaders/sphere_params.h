@@ -4,4 +4,5 @@
 #ifndef LB_SPHERE_PARAMS_H
 #define LB_SPHERE_PARAMS_H
 #define LB_SPHERE_TRI_SIZE 0
+#define LB_SPHERE_INTEGER 1  // read by the C++ side only (Scheme::partitioning)
 #endif

@@ -237,6 +237,14 @@ int frameCount(const CameraPath& path, double fps) {
   return static_cast<int>(frames) + 1;
 }
 
+CameraPose terrainLocalPose(const CameraPose& pose, const Heightfield& terrain) {
+  const glm::dvec3 o(terrain.originX, 0.0, terrain.originZ);
+  CameraPose local = pose;
+  local.eye = glm::vec3(glm::dvec3(pose.eye) - o);
+  local.target = glm::vec3(glm::dvec3(pose.target) - o);
+  return local;
+}
+
 CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain) {
   checkFps(fps);
   if (path.keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
@@ -251,6 +259,12 @@ CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heigh
   pose.fovDeg = static_cast<float>(k.fovDeg);
   const float ground = terrain.sample(pose.eye.x, pose.eye.z) + static_cast<float>(kGroundClearance * extent);
   pose.eye.y = std::max(pose.eye.y, ground);
+  if (terrain.originX != 0.0 || terrain.originZ != 0.0) {
+    // Placed in double, then rounded to float like the patch vertices (renderer_setup.cpp).
+    const glm::dvec3 o(terrain.originX, 0.0, terrain.originZ);
+    pose.eye = glm::vec3(glm::dvec3(pose.eye) + o);
+    pose.target = glm::vec3(glm::dvec3(pose.target) + o);
+  }
   return pose;
 }
 

@@ -38,7 +38,10 @@ CameraPath parseCameraPath(const std::string& text, const std::string& nameForEr
 Keyframe interpolate(const CameraPath& path, double t);
 // Number of frames when sampling at fps: floor(duration * fps) + 1.
 int frameCount(const CameraPath& path, double fps);
-// World-space pose of frame i at fps on a terrain (eye kept >= ground + 0.002 * extent).
+// World-space pose of frame i at fps on a terrain (eye kept >= ground + 0.002 * extent), moved by
+// the terrain's origin (Heightfield::originX/Z) and rounded to float.
 CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain);
+// The pose in terrain-local coordinates (origin subtracted), for CPU metrics that work in them.
+CameraPose terrainLocalPose(const CameraPose& pose, const Heightfield& terrain);
 
 }  // namespace lb

@@ -34,7 +34,7 @@ static std::string cacheKey(const Heightfield& terrain, int width, int height, c
   key.precision(9);
   // "raycast1": bump when the ray cast or terrain.frag's shading changes, so old files are not reused.
   key << "raycast1|" << std::hex << th << std::dec << '|' << terrain.width << 'x' << terrain.height << '|'
-      << terrain.extent << '|' << width << 'x' << height << '|' << pose.eye.x << ',' << pose.eye.y << ',' << pose.eye.z
+      << terrain.extent << '|' << terrain.originX << ',' << terrain.originZ << '|' << width << 'x' << height << '|' << pose.eye.x << ',' << pose.eye.y << ',' << pose.eye.z
       << '|' << pose.target.x << ',' << pose.target.y << ',' << pose.target.z << '|' << pose.fovDeg;
   return key.str();
 }
@@ -73,7 +73,8 @@ const RgbaImage& ReferenceCache::image(const Heightfield& terrain, const std::st
       }
     }
   }
-  RgbaImage img = raycastImage(terrain, pose, width, height);
+  // The ray cast works in the heightfield's own frame; the pose is in world space (terrain origin).
+  RgbaImage img = raycastImage(terrain, terrainLocalPose(pose, terrain), width, height);
   ++rayCasts_;
   if (!path.empty()) {
     std::filesystem::create_directories(dir_);

@@ -60,6 +60,7 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   u.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width), 1.0f / float(settings_.height));
   u.terrain = glm::vec4(terrain_.extent, float(settings_.grid), float(terrain_.width), float(terrain_.height));
   u.light = glm::vec4(glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f)), 0.0f);
+  u.origin = glm::vec4(float(terrain_.originX), float(terrain_.originZ), 0.0f, 0.0f);
   scheme_->update(u, params_);
   std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
 }

@@ -107,6 +107,11 @@ void Renderer::createGrid() {
     g.indices = patchIndices(settings_.grid, topo);
     g.bounds = patchHeightBounds(terrain_, settings_.grid, topo);
   }
+  // Schemes lay patches out terrain-locally; the terrain's origin moves them into the world, in
+  // double and then rounded to float, as an engine without camera-relative coordinates would.
+  if (terrain_.originX != 0.0 || terrain_.originZ != 0.0)
+    for (glm::vec2& v : g.vertices)
+      v = glm::vec2(float(double(v.x) + terrain_.originX), float(double(v.y) + terrain_.originZ));
   patchCount_ = uint32_t(g.indices.size() / controlPoints_);
   if (patchCount_ == 0 || g.indices.size() % controlPoints_ != 0 || g.bounds.size() != patchCount_)
     throw std::logic_error("scheme '" + scheme_->info().name + "' supplied inconsistent patch geometry");
@@ -123,7 +128,7 @@ void Renderer::createGrid() {
   createBuffer(ctx_, capture_, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memset(capture_.mapped, 0, size_t(capture_.size));
-  uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->info().partitioning);
+  uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->partitioning(params_));
   patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));
 }
 
@@ -250,7 +255,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   } guard{ctx_.device, mods};
   mods[0] = loadShaderModule(ctx_, "terrain.vert.spv");
   mods[1] = loadShaderModule(ctx_, info.tesc + ".tesc.spv");
-  mods[2] = loadShaderModule(ctx_, info.tese + "_" + partitioningName(info.partitioning) + ".tese.spv");
+  mods[2] = loadShaderModule(ctx_, info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv");
   mods[3] = loadShaderModule(ctx_, "terrain.frag.spv");
   int modeValue = int(mode);
   VkBool32 captureValue = capture;

@@ -16,6 +16,11 @@ void Scheme::update(FrameUniforms& frame, const ParamValues& values) const {
   }
 }
 
+Partitioning Scheme::partitioning(const ParamValues& values) const {
+  auto it = values.find(kIntegerParam);
+  return it != values.end() && it->second != 0 ? Partitioning::Integer : info().partitioning;
+}
+
 double Scheme::targetAreaPx(const ParamValues& values) const {
   auto it = values.find("tri_size");
   return it == values.end() ? 0.0 : 0.5 * it->second * it->second;

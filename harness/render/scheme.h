@@ -42,6 +42,9 @@ struct SchemeInfo {
 
 using ParamValues = std::map<std::string, double>;
 
+// Name of the optional 0/1 parameter that switches a scheme to integer partitioning.
+constexpr const char* kIntegerParam = "integer";
+
 // Optional preprocessing output a scheme hands to the renderer (bound at LB_BINDING_SCHEME_TEX).
 struct SchemeTexture {
   int width = 0, height = 0;
@@ -81,6 +84,10 @@ class Scheme {
   // Checks between parameters that ParamSpec ranges cannot express; throws InputError.
   // Callers run it on resolveParams' result.
   virtual void validate(const ParamValues&) const {}
+  // Partitioning in effect: SchemeInfo::partitioning, or Integer where the scheme declares an
+  // `integer` parameter (kIntegerParam) and it is 1 (scenario "fast motion": popping under integer
+  // vs fractional spacing). The evaluation shader is compiled per partitioning, so nothing else changes.
+  virtual Partitioning partitioning(const ParamValues& values) const;
   // Target triangle area in px^2 for screen-space schemes, 0 when the scheme has none. Default:
   // a `tri_size` parameter t (target triangle width) gives t^2 / 2 (NVIDIA: size 6 -> 18 px).
   virtual double targetAreaPx(const ParamValues& values) const;

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "report/report_tables.h"
+#include "report/scenario_table.h"
 #include "report/table.h"
 #include "sweep/results.h"
 
@@ -150,6 +151,12 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
       "difference, 0-255, between a frame rendered with the previous frame's LOD and with the live LOD), and the "
       "share of measured frames where a visible patch hit factor 64. Links go to the worst frame's images.");
   w.table(stabilityTable(run, runHref), "stability");
+  if (const std::string d = scenarioDescription(run); !d.empty()) {
+    // Scenario runs (configs/scenarios/): what failure to look for, and each case's figure for it.
+    w.para("Scenario: " + d);
+    if (const std::string metric = scenarioMetric(d); !metric.empty())
+      w.table(scenarioTable(run, metric, runHref), "scenario");
+  }
 
   w.heading(2, "Failed and skipped cases", "problems");
   Table problems = problemTable(run);

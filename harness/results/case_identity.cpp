@@ -2,6 +2,7 @@
 
 #include "results/sha256.h"
 #include "sweep/config.h"
+#include "terrain/generators.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -16,7 +17,8 @@ static std::string fileDigest(const std::string& file, FileDigests& files) {
 
 json terrainInputs(const TerrainSpec& t, FileDigests& files) {
   json j = {{"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}};
-  if (t.type == "procedural") {
+  if (t.originX != 0 || t.originZ != 0) j["origin"] = {t.originX, t.originZ};
+  if (t.type == "procedural" || isGeneratedTerrain(t.type)) {
     j["size"] = t.size;
     j["seed"] = t.seed;
   } else {

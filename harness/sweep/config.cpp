@@ -11,6 +11,7 @@
 #include "camera/camera_path.h"
 #include "error.h"
 #include "results/case_identity.h"
+#include "terrain/generators.h"
 #include "schemes/registry.h"
 #include "sweep/json_lines.h"
 #include "sweep/json_strict.h"
@@ -74,17 +75,17 @@ std::string inputFile(const Reader& r, const json& v, const std::string& ptr, co
 }
 
 std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height"});
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f"};
+  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f", "spikes", "cliff", "flat", "voids"};
   if (!kTypes.count(spec.type))
-    r.fail(ptr + "/type", "'" + printable(spec.type) + "' is not one of procedural, hgt, png16, r16, r32f");
+    r.fail(ptr + "/type", "'" + printable(spec.type) + "' is not one of procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids");
   // A field the type does not read would be silently ignored: reject it instead.
-  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural";
+  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural" || isGeneratedTerrain(spec.type);
   auto reason = [](const std::string& k) {
-    if (k == "file") return "procedural terrains are generated, not read";
-    if (k == "size" || k == "seed") return "only procedural terrains are generated from a size and seed";
+    if (k == "file") return "generated terrains are not read from a file";
+    if (k == "size" || k == "seed") return "only generated terrains take a size and seed";
     return "only r16 and r32f take a width and height; other files carry their size";
   };
   for (const std::string k : {"file", "size", "seed", "width", "height"}) {
@@ -96,6 +97,7 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     spec.file = inputFile(r, t["file"], ptr + "/file", base, "heightmap file");
     spec.heightScale = 1.0f;
   }
+  if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
   if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
   // Procedural heights span [0, height_scale], so its bound is the height bound (kMaxAbsHeight);
@@ -104,6 +106,11 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     spec.heightScale = float(r.number(t["height_scale"], ptr + "/height_scale", 0, procedural ? kMaxAbsHeight : 1e9));
   if (t.contains("width")) spec.rawWidth = r.integer(t["width"], ptr + "/width", 2, 65536);
   if (t.contains("height")) spec.rawHeight = r.integer(t["height"], ptr + "/height", 2, 65536);
+  if (t.contains("origin")) {  // [x, z]: world position of the terrain's corner (scenario "far from the origin")
+    if (!t["origin"].is_array() || t["origin"].size() != 2) r.fail(ptr + "/origin", "expected [x, z]");
+    spec.originX = r.number(t["origin"][0], ptr + "/origin/0", -1e8, 1e8);
+    spec.originZ = r.number(t["origin"][1], ptr + "/origin/1", -1e8, 1e8);
+  }
   if (raw && (spec.rawWidth == 0 || spec.rawHeight == 0)) r.fail(ptr, "raw terrain needs 'width' and 'height'");
   // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
   if (!procedural) {
@@ -344,7 +351,16 @@ Config loadConfig(const std::string& file) {
 }
 
 std::string terrainLabel(const TerrainSpec& t) {
+  if (t.originX != 0 || t.originZ != 0) {
+    TerrainSpec atOrigin = t;
+    atOrigin.originX = atOrigin.originZ = 0;
+    // Whole metres keep the label free of exponents ("1e+07").
+    return terrainLabel(atOrigin) + "-at" + std::to_string(std::llround(t.originX)) + "_" +
+           std::to_string(std::llround(t.originZ));
+  }
   if (t.type == "procedural") return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed);
+  if (t.type == "voids") return "voids1201s" + std::to_string(t.seed);  // the tile's size, not t.size
+  if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
   auto slash = t.file.find_last_of('/');
   std::string stem = t.file.substr(slash == std::string::npos ? 0 : slash + 1);
   return stem.substr(0, stem.find('.'));

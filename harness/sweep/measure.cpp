@@ -128,7 +128,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_p99", pop.p99);
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
   }
-  set("saturated_patches", saturatedPatches(levels, scheme.info().partitioning));
+  set("saturated_patches", saturatedPatches(levels, scheme.partitioning(params)));
   // errbound flags drawn patches whose level 64 still misses max_error_px (shaders/errbound_params.h).
   if (scheme.info().name == "errbound") set("errbound_unmet_patches", errboundUnmetPatches(levels));
   return m;

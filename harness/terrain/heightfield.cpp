@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "error.h"
+#include "terrain/generators.h"
 
 // makeProcedural promises the same bits on every machine. Fusing a*b+c into an FMA rounds once
 // instead of twice, so a compiler that contracts (GCC's default in gnu++ mode on FMA targets,
@@ -220,10 +221,17 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
 }
 
 Heightfield makeHeightfield(const TerrainSpec& spec) {
-  if (spec.type == "procedural") return makeProcedural(spec);
+  auto placed = [&spec](Heightfield hf) {
+    hf.originX = spec.originX;
+    hf.originZ = spec.originZ;
+    return hf;
+  };
+  if (spec.type == "procedural") return placed(makeProcedural(spec));
+  if (isGeneratedTerrain(spec.type)) return placed(makeGeneratedTerrain(spec));
   if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f")
-    return loadHeightfield(spec);
-  throw InputError("terrain: unknown type '" + spec.type + "' (valid types: procedural, hgt, png16, r16, r32f)");
+    return placed(loadHeightfield(spec));
+  throw InputError("terrain: unknown type '" + spec.type +
+                   "' (valid types: procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids)");
 }
 
 }  // namespace lb

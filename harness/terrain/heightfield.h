@@ -13,6 +13,10 @@ struct Heightfield {
   std::vector<float> h;    // world-space heights (heightScale applied), row-major, row = z
   float minHeight = 0.0f;
   float maxHeight = 0.0f;
+  // World x/z of sample (0, 0): the renderer and camera paths place the terrain there, so a far
+  // origin really moves every float position (scenario "far from the origin"). sample() and at()
+  // stay terrain-local: subtract the origin first.
+  double originX = 0.0, originZ = 0.0;
 
   float at(int x, int z) const;            // clamped to the border
   // Bilinear height at world (x, z). Must match shaders/common.glsl terrainHeight() exactly:
@@ -23,13 +27,14 @@ struct Heightfield {
 
 // Where a heightfield comes from. Mirrors the "terrain" object of a config file.
 struct TerrainSpec {
-  std::string type = "procedural";  // procedural | hgt | png16 | r16 | r32f
+  std::string type = "procedural";  // procedural | hgt | png16 | r16 | r32f | spikes | cliff | flat
   std::string file;                 // for file types (resolved path)
   int size = 1024;                  // procedural: samples per side
   uint32_t seed = 1;                // procedural
   int rawWidth = 0, rawHeight = 0;  // r16 / r32f: dimensions (required)
   float extent = 1000.0f;           // world units covered along x and z
   float heightScale = 120.0f;       // procedural: peak height; files: multiplier on stored values
+  double originX = 0.0, originZ = 0.0;  // world position of the terrain's (0, 0) corner (Heightfield::originX)
 };
 
 // Largest |height| accepted, in world units after heightScale. Earth's relief spans -11 km to
