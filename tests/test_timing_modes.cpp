@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "error.h"
 #include "gpu_fixture.h"
 #include "render/probe.h"
 #include "sweep/config.h"
@@ -151,5 +152,29 @@ TEST(Calibration, SweepRecordsModesAndFlagsPlantedDrift) {
       EXPECT_TRUE(cal["flagged"].get<bool>()) << cal.dump();
     }
     fs::remove_all(out);
+  }
+}
+
+// Bad timing/calibration config gives an InputError naming the field.
+TEST(TimingConfig, BadKeysNameTheField) {
+  const std::string dir = std::string(LODBENCH_SOURCE_DIR) + "/configs";
+  auto parse = [&](const std::string& extra) {
+    return parseConfig(R"({"name": "t", "terrain": {"type": "procedural", "size": 33}, "paths": ["paths/flyover.csv"],
+      "schemes": ["uniform"], )" + extra + "}",
+                       "t.json", dir);
+  };
+  EXPECT_EQ(parse(R"("timing": ["shaded", "frontend"])").timing.modes, (std::vector<std::string>{"shaded", "frontend"}));
+  EXPECT_TRUE(parse(R"("calibration": true)").timing.calibrate);
+  EXPECT_EQ(parse(R"("calibration": {"level": 8})").timing.level, 8);
+  for (const char* bad : {R"("timing": ["shaded", "wire"])", R"("timing": ["depth"])", R"("timing": ["shaded", "shaded"])",
+                          R"("calibration": {"levels": 8})", R"("calibration": {"max_tries": 2})"}) {
+    try {
+      parse(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      std::string msg = e.what();
+      EXPECT_NE(msg.find("t.json:"), std::string::npos) << msg;
+      EXPECT_TRUE(msg.find("/timing") != std::string::npos || msg.find("/calibration") != std::string::npos) << msg;
+    }
   }
 }
