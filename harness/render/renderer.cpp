@@ -219,6 +219,8 @@ void Renderer::finish() {
 
 std::vector<uint8_t> Renderer::renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
                                            FrameResult* result) {
+  if (mode == RenderMode::Depth || mode == RenderMode::Frontend)
+    throw std::logic_error("renderImage: timing modes depth and frontend write no colour image");
   finish();
   int si = nextSlot_;
   slots_[size_t(si)].readback = true;
