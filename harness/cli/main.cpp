@@ -1,5 +1,5 @@
 // lodbench: command-line entry point. Subcommands: list, devices, run, render, merge, report,
-// compare, ab, gbench.
+// compare, ab, gbench, probe.
 #include <unistd.h>
 
 #include <cmath>
@@ -16,6 +16,7 @@
 #include "metrics/cracks.h"
 #include "sweep/measure.h"
 #include "sweep/merge.h"
+#include "sweep/probe_command.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "report/report.h"
@@ -280,6 +281,21 @@ int main(int argc, char** argv) {
   std::string gbenchDir;
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
 
+  // probe (issue 13): the minimal tessellation loop beside lodbench's renderer.
+  auto* probe = app.add_subcommand("probe", "Time the minimal tessellation loop (uniform levels) at a config's grid, resolutions, modes and camera");
+  ProbeCommandOptions po;
+  probe->add_option("config", po.config, "Config file (grid, resolutions, timing modes, terrain, first path)")->required();
+  probe->add_option("--device", po.device, "Vulkan device: name substring or index (overrides the config)");
+  probe->add_option("--levels", po.levels, "Uniform levels (default: the first scheme's level, else 1)")->delimiter(',');
+  probe->add_option("--modes", po.modes, "Timing modes (default: the config's \"timing\")")->delimiter(',');
+  probe->add_option("--frames", po.frames, "Timed frames per row (median)")->capture_default_str()->check(CLI::Range(1, 100000));
+  probe->add_option("--warmup", po.warmup, "Unrecorded frames before each row")->capture_default_str()->check(CLI::Range(0, 100000));
+  probe->add_option("--frame", po.frame, "Camera: this frame of the config's first path")->capture_default_str()->check(CLI::NonNegativeNumber);
+  probe->add_flag("--compare", po.compare, "Also time lodbench's renderer (uniform scheme) per row: ratio = minimal / lodbench");
+  probe->add_option("--split", po.split, "Split draws like the renderer: auto (lavapipe only), on, off")->capture_default_str();
+  probe->add_option("--out", po.out, "Write the JSON here too");
+  probe->add_flag("--append", po.append, "Append rows to the --out file");
+
   // CLI11 answers a mistyped subcommand with "A subcommand is required"; say what is wrong instead.
   if (argc < 2) {
     app.name("lodbench");
@@ -312,6 +328,7 @@ int main(int argc, char** argv) {
     if (*render) return renderCmd(ra);
     if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
     if (*ab) return abCommand(abo, co, vf);
+    if (*probe) return probeCommand(po);
     if (*gbench) {
       std::printf("%s\n", writeGoogleBenchmarkJson(gbenchDir).c_str());
       return 0;

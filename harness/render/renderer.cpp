@@ -72,17 +72,17 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
-  uint32_t q0 = uint32_t(slotIndex) * kTimestampsPerSlot;
-  vkCmdResetQueryPool(cmd, timestamps_, q0, kTimestampsPerSlot);
-  vkCmdResetQueryPool(cmd, stats_, uint32_t(slotIndex), 1);
+  profiler_.reset(cmd, slotIndex);
   const Image& target = mode == RenderMode::Error ? errorTarget_ : color_;
+  const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
+  const bool depth = mode != RenderMode::Frontend;  // frontend discards all primitives: no attachments
   // Earlier frames may still write these targets: order after them, discard old contents.
-  imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+  if (colour) imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+  if (depth) imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
@@ -104,15 +104,15 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, {uint32_t(settings_.width), uint32_t(settings_.height)}};
   ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &ca;
-  ri.pDepthAttachment = &da;
+  ri.colorAttachmentCount = colour ? 1 : 0;
+  ri.pColorAttachments = colour ? &ca : nullptr;
+  ri.pDepthAttachment = depth ? &da : nullptr;
 
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, q0 + kQueryTop);
+  profiler_.timestampTop(cmd, slotIndex);
   vkCmdBeginRendering(cmd, &ri);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
   // planted slowdown below draw after the query ends.
-  vkCmdBeginQuery(cmd, stats_, uint32_t(slotIndex), 0);
+  profiler_.beginStats(cmd, slotIndex);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
   uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
@@ -127,7 +127,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
                        &push);
     vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
   }
-  vkCmdEndQuery(cmd, stats_, uint32_t(slotIndex));
+  profiler_.endStats(cmd, slotIndex);
   if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
     // Planted regression (tests only), after the statistics query and before the closing timestamp:
     // the first fraction s of each eighth of the patches is drawn again (the share spreads over the
@@ -147,7 +147,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
     }
   }
   vkCmdEndRendering(cmd);
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps_, q0 + kQueryBottom);
+  profiler_.timestampBottom(cmd, slotIndex);
   if (slot.readback) {
     imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -177,6 +177,7 @@ void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraP
   nextSlot_ = (nextSlot_ + 1) % kSlots;
   Slot& slot = slots_[size_t(si)];
   if (slot.busy) collect(si);  // the frame kSlots ago; the one just before keeps running
+  double ownStart = nowMs();  // the harness's own cost starts after the wait for the old frame
   fillUniforms(si, view, lod);
   record(slot, si, mode, capture);
   VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -186,6 +187,7 @@ void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraP
   VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &sub, slot.fence));
   slot.busy = true;
   slot.frame = frameIndex;
+  slot.harnessMs = nowMs() - ownStart;
   slot.cpuMs = lastSubmitMs_ < 0 ? nowMs() - start : start - lastSubmitMs_;
   lastSubmitMs_ = start;
   order_.push_back(si);
@@ -195,27 +197,14 @@ void Renderer::collect(int si) {
   Slot& slot = slots_[size_t(si)];
   if (!slot.busy) return;
   VK_CHECK(vkWaitForFences(ctx_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX));
-  uint64_t ts[kTimestampsPerSlot];
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(si) * kTimestampsPerSlot, kTimestampsPerSlot,
-                                 sizeof ts, ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  uint64_t st[8];
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(si), 1, sizeof st, st, sizeof st,
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  uint64_t mask = ctx_.props.limits.timestampPeriod > 0 ? ~0ull : 0;
+  double readStart = nowMs();
+  GpuSample sample = profiler_.read(si);
   FrameResult r;
   r.frame = slot.frame;
-  r.gpuMs = double((ts[kQueryBottom] - ts[kQueryTop]) & mask) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
+  r.gpuMs = sample.gpuMs;
   r.cpuMs = slot.cpuMs;
-  // Results come in the order of the statistic bits: IA, VS, clipping (0x20, 0x40), FS (0x80),
-  // then tessellation control (0x100) and evaluation (0x200).
-  r.stats.iaVertices = st[0];
-  r.stats.iaPrimitives = st[1];
-  r.stats.vsInvocations = st[2];
-  r.stats.clipInvocations = st[3];
-  r.stats.clipPrimitives = st[4];
-  r.stats.fsInvocations = st[5];
-  r.stats.tcsPatches = st[6];
-  r.stats.tesInvocations = st[7];
+  r.stats = sample.stats;
+  r.harnessMs = slot.harnessMs + (nowMs() - readStart);
   completed_.push_back(r);
   slot.busy = false;
   order_.erase(std::find(order_.begin(), order_.end(), si));
@@ -234,6 +223,8 @@ void Renderer::finish() {
 
 std::vector<uint8_t> Renderer::renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
                                            FrameResult* result) {
+  if (mode == RenderMode::Depth || mode == RenderMode::Frontend)
+    throw std::logic_error("renderImage: timing modes depth and frontend write no colour image");
   finish();
   int si = nextSlot_;
   slots_[size_t(si)].readback = true;

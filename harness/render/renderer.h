@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/gpu_profiler.h"
 #include "render/scheme.h"
 #include "vk/resources.h"
 
@@ -21,7 +22,10 @@ struct CameraPose;
 
 // Shaded/Heatmap/Wireframe write RGBA8; Error writes per-pixel screen-space error (R32F, -1 where
 // no terrain); Histogram bins triangle areas in a geometry shader and rasterizes nothing.
-enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2, Error = 3, Histogram = 4 };
+// Timing modes (sweep/timing_modes.h): Depth rasterizes into depth only (no colour attachment, no
+// fragment shader); Frontend discards every primitive before rasterization, so only the vertex,
+// LOD decision (control) and tessellator/evaluation stages run.
+enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2, Error = 3, Histogram = 4, Depth = 5, Frontend = 6 };
 
 // Triangle counts by screen-space area (see LB_HIST_* in shaders/shared.h).
 struct TriangleHistogram {
@@ -40,16 +44,13 @@ struct RenderSettings {
   double testSlowdown = 0;
 };
 
-struct PipelineStats {
-  uint64_t iaVertices = 0, iaPrimitives = 0, vsInvocations = 0;
-  uint64_t tcsPatches = 0, tesInvocations = 0;
-  uint64_t clipInvocations = 0, clipPrimitives = 0, fsInvocations = 0;
-};
-
 struct FrameResult {
   int frame = 0;
   double gpuMs = 0;  // timestamps around the terrain draws x timestampPeriod
   double cpuMs = 0;  // host time between consecutive frame submissions
+  // The harness's own host cost of the frame: uniform fill, recording, submit, and the read-back
+  // of its queries (the fence wait is left out: that is the GPU's time, not the harness's).
+  double harnessMs = 0;
   PipelineStats stats;
 };
 
@@ -122,10 +123,10 @@ class Renderer {
     bool busy = false;
     int frame = 0;
     double cpuMs = 0;
+    double harnessMs = 0;  // host time spent in submitFrame (uniforms, recording, submit)
     bool readback = false;
   };
   static constexpr int kSlots = 2;
-  enum Query : uint32_t { kQueryTop = 0, kQueryBottom = 1, kTimestampsPerSlot = 2 };
 
   void createTargets();
   void createGrid();
@@ -150,7 +151,7 @@ class Renderer {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   std::map<int, VkPipeline> pipelines_;  // key: mode * 2 + capture
-  VkQueryPool timestamps_ = VK_NULL_HANDLE, stats_ = VK_NULL_HANDLE;
+  GpuProfiler profiler_;
   std::array<Slot, kSlots> slots_{};
   int nextSlot_ = 0;
   std::vector<int> order_;  // slots in submission order

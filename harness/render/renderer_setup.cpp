@@ -27,7 +27,7 @@ uint32_t maxVerticesPerPatch(float level, Partitioning partitioning) {
 }
 
 Renderer::Renderer(Context& ctx, const Heightfield& terrain, const RenderSettings& settings)
-    : ctx_(ctx), terrain_(terrain), settings_(settings) {
+    : ctx_(ctx), terrain_(terrain), settings_(settings), profiler_(ctx, kSlots) {
   if (settings.width < 16 || settings.height < 16 || settings.width > 8192 || settings.height > 8192)
     throw std::runtime_error("resolution must be within 16..8192 pixels per side");
   if (settings.grid < 1 || settings.grid > 1024) throw std::runtime_error("grid must be within 1..1024 patches per side");
@@ -42,20 +42,6 @@ Renderer::Renderer(Context& ctx, const Heightfield& terrain, const RenderSetting
     VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VK_CHECK(vkCreateFence(ctx_.device, &fi, nullptr, &s.fence));
   }
-  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = kSlots * kTimestampsPerSlot;
-  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &timestamps_));
-  qi.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
-  qi.queryCount = kSlots;
-  qi.pipelineStatistics =
-      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT | VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
-  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &stats_));
 }
 
 Renderer::~Renderer() {
@@ -65,8 +51,6 @@ Renderer::~Renderer() {
     vkDestroyFence(ctx_.device, s.fence, nullptr);
     vkFreeCommandBuffers(ctx_.device, ctx_.commandPool, 1, &s.cmd);
   }
-  vkDestroyQueryPool(ctx_.device, stats_, nullptr);
-  vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
   vkDestroyPipelineLayout(ctx_.device, pipelineLayout_, nullptr);
   vkDestroyDescriptorPool(ctx_.device, descPool_, nullptr);
   vkDestroyDescriptorSetLayout(ctx_.device, setLayout_, nullptr);
@@ -256,7 +240,10 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   mods[0] = loadShaderModule(ctx_, "terrain.vert.spv");
   mods[1] = loadShaderModule(ctx_, info.tesc + ".tesc.spv");
   mods[2] = loadShaderModule(ctx_, info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv");
-  mods[3] = loadShaderModule(ctx_, "terrain.frag.spv");
+  // Timing modes Depth and Frontend run no fragment shader at all.
+  const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
+  const bool frontend = mode == RenderMode::Frontend;
+  if (colour) mods[3] = loadShaderModule(ctx_, "terrain.frag.spv");
   int modeValue = int(mode);
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry modeEntry{0, 0, sizeof(int)}, captureEntry{1, 0, sizeof(VkBool32)};
@@ -300,7 +287,8 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   rs.polygonMode = mode == RenderMode::Wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
   rs.cullMode = VK_CULL_MODE_NONE;  // back faces are counted by the histogram pass, not hidden
   rs.lineWidth = 1.0f;
-  rs.rasterizerDiscardEnable = histogram;  // the histogram pass only counts triangles
+  // The histogram pass only counts triangles; the frontend timing mode stops after the tessellator.
+  rs.rasterizerDiscardEnable = histogram || frontend;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
@@ -310,13 +298,13 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   VkPipelineColorBlendAttachmentState att{};
   att.colorWriteMask = 0xf;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &att;
+  cb.attachmentCount = colour ? 1 : 0;
+  cb.pAttachments = colour ? &att : nullptr;
   VkFormat colorFormat = mode == RenderMode::Error ? kErrorFormat : kColorFormat;
   VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachmentFormats = &colorFormat;
-  ri.depthAttachmentFormat = kDepthFormat;
+  ri.colorAttachmentCount = colour ? 1 : 0;
+  ri.pColorAttachmentFormats = colour ? &colorFormat : nullptr;
+  ri.depthAttachmentFormat = frontend ? VK_FORMAT_UNDEFINED : kDepthFormat;
   VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &ri};
   gi.stageCount = stageCount;
   gi.pStages = stages;

@@ -1,6 +1,7 @@
 #include "report/report_page.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <set>
 
 #include "report/report_tables.h"
@@ -164,6 +165,25 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
     w.para("None: every case ran.");
   else
     w.table(problems, "problems");
+
+  // Clock control (issue 13): cases whose calibration workload drifted over the timed frames.
+  std::string flagged;
+  int calibrated = 0;
+  for (const ReportCase& c : run.cases) {
+    auto cal = c.summary.find("calibration");
+    if (cal == c.summary.end() || !cal->is_object()) continue;
+    ++calibrated;
+    if (cal->value("flagged", false)) {
+      auto d = cal->find("drift");
+      char pct[32] = "unknown";
+      if (d != cal->end() && d->is_number()) std::snprintf(pct, sizeof pct, "%+.1f%%", d->get<double>() * 100);
+      flagged += (flagged.empty() ? "" : ", ") + c.id + " (" + pct + ")";
+    }
+  }
+  if (calibrated > 0)
+    w.para(flagged.empty() ? "Clock control: no case's calibration drifted by more than 2% over its timed frames."
+                           : "Clock control: calibration drifted by more than 2% over the timed frames of " + flagged + ".",
+           "note");
 
   w.heading(2, "Every case", "cases");
   std::vector<std::string> omitted;

@@ -24,12 +24,17 @@ struct Column {
   const char* header;
   const char* key;
   const char* stat;
+  bool optIn = false;  // present only when the config asks for it: not listed as left out
 };
 constexpr Column kCaseColumns[] = {
     {"frames", "frames", ""},
     {"GPU ms median", "gpu_ms", "median"},
     {"GPU ms p95", "gpu_ms", "p95"},
+    {"GPU ms depth", "gpu_ms_depth", "median", true},        // timing modes (issue 13)
+    {"GPU ms frontend", "gpu_ms_frontend", "median", true},  // LOD decision + tessellator only
     {"CPU ms median", "cpu_ms", "median"},
+    {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs before issue 13 lack it
+    {"calibration drift", "calibration", "drift", true},  // flagged when |drift| > 0.02
     {"FPS median", "fps_median", ""},
     {"triangles median", "triangles", "median"},
     {"patches median", "patches", "median"},
@@ -155,7 +160,7 @@ Table caseTable(const ReportRun& run, std::vector<std::string>& omitted) {
         std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return columnValue(c, col).has_value(); });
     if (any)
       cols.push_back(&col);
-    else
+    else if (!col.optIn)
       omitted.push_back(col.header);
   }
   Table t{{"case", "scheme", "parameters", "path", "status"}, {}, {false, false, false, false, false}};

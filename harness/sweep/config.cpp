@@ -212,7 +212,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   Reader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
                      "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
-                     "description"});
+                     "description", "timing", "calibration"});
   Config c;
   c.file = file;
   c.raw = j;
@@ -305,6 +305,34 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
                  "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
         c.images.modes.push_back(m);
       }
+    }
+  }
+  // Timing modes and clock-control calibration (issue 13; see sweep/timing_spec.h).
+  if (j.contains("timing")) {
+    const json& t = j["timing"];
+    if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
+    c.timing.modes.clear();
+    for (size_t i = 0; i < t.size(); ++i) {
+      std::string m = r.string(t[i], "/timing/" + std::to_string(i));
+      if (m != "shaded" && m != "depth" && m != "frontend")
+        r.fail("/timing/" + std::to_string(i), "unknown timing mode '" + m + "' (shaded, depth, frontend)");
+      if (std::find(c.timing.modes.begin(), c.timing.modes.end(), m) != c.timing.modes.end())
+        r.fail("/timing/" + std::to_string(i), "timing mode '" + m + "' listed twice");
+      c.timing.modes.push_back(m);
+    }
+    if (std::find(c.timing.modes.begin(), c.timing.modes.end(), "shaded") == c.timing.modes.end())
+      r.fail("/timing", "must include \"shaded\" (the case's gpu_ms is the shaded time)");
+  }
+  if (j.contains("calibration")) {
+    const json& k = j["calibration"];
+    if (k.is_boolean()) {
+      c.timing.calibrate = k.get<bool>();
+    } else {
+      r.onlyKeys(k, "/calibration", {"level", "frames", "max_tries"});
+      c.timing.calibrate = true;
+      if (k.contains("level")) c.timing.level = r.integer(k["level"], "/calibration/level", 1, 64);
+      if (k.contains("frames")) c.timing.frames = r.integer(k["frames"], "/calibration/frames", 1, 1000);
+      if (k.contains("max_tries")) c.timing.maxTries = r.integer(k["max_tries"], "/calibration/max_tries", 3, 1000);
     }
   }
   if (j.contains("measure")) {

@@ -9,6 +9,7 @@
 #include "render/scheme.h"
 #include "sweep/matched.h"
 #include "sweep/measure.h"
+#include "sweep/timing_spec.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -40,6 +41,7 @@ struct Config {
   ImageRequest images;
   MeasureSpec measure;     // measurement passes (off unless "measure" is given)
   MatchSpec match;         // matched comparisons (off unless "match" is given)
+  TimingSpec timing;       // timing modes and calibration ("timing", "calibration")
   nlohmann::json raw;      // the config as written, recorded in results
   double testSlowdown = 0; // `run --test-slowdown` (tests only, never from JSON): see RenderSettings
 };

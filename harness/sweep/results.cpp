@@ -99,10 +99,11 @@ static json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr)
 
 json caseSummary(const CaseResult& r) {
   if (r.frames.empty()) return json::object();
-  std::vector<double> gpu, cpu, tris, patches, tes, frags;
+  std::vector<double> gpu, cpu, tris, patches, tes, frags, harness;
   for (auto& f : r.frames) {
     gpu.push_back(f.gpuMs);
     cpu.push_back(f.cpuMs);
+    harness.push_back(f.harnessMs);
     tris.push_back(double(f.stats.clipInvocations));
     patches.push_back(double(f.stats.tcsPatches));
     tes.push_back(double(f.stats.tesInvocations));
@@ -119,6 +120,13 @@ json caseSummary(const CaseResult& r) {
               {"patches", summaryOf(patches)},
               {"tes_invocations", summaryOf(tes)},
               {"fragment_invocations", summaryOf(frags)}};
+  out["cpu_harness_ms"] = summaryOf(harness);
+  for (auto& [mode, frames] : r.modeFrames) {  // timing modes: gpu_ms_depth, gpu_ms_frontend
+    std::vector<double> ms;
+    for (auto& f : frames) ms.push_back(f.gpuMs);
+    if (!ms.empty()) out["gpu_ms_" + mode] = summaryOf(ms);
+  }
+  if (!r.calibration.is_null()) out["calibration"] = r.calibration;
   if (r.metrics.empty()) return out;
   // Per metric: statistics over the measured frames where it is available.
   std::map<std::string, std::vector<double>> series;
@@ -168,10 +176,12 @@ json caseJson(const Case& c, const CaseResult& r) {
   std::map<int, const FrameMetrics*> measured;
   for (auto& m : r.metrics) measured[m.frame] = &m;
   json frames = json::array();
-  for (auto& f : r.frames) {
+  for (size_t fi = 0; fi < r.frames.size(); ++fi) {
+    const FrameResult& f = r.frames[fi];
     json rec = {{"frame", f.frame},
                 {"gpu_ms", f.gpuMs},
                 {"cpu_ms", f.cpuMs},
+                {"cpu_harness_ms", f.harnessMs},
                 {"fps", f.gpuMs > 0 ? 1000.0 / f.gpuMs : 0.0},
                 {"ia_vertices", f.stats.iaVertices},
                 {"ia_primitives", f.stats.iaPrimitives},
@@ -181,6 +191,8 @@ json caseJson(const Case& c, const CaseResult& r) {
                 {"clip_invocations", f.stats.clipInvocations},
                 {"clip_primitives", f.stats.clipPrimitives},
                 {"fragment_invocations", f.stats.fsInvocations}};
+    for (auto& [mode, mf] : r.modeFrames)
+      if (fi < mf.size()) rec["gpu_ms_" + mode] = mf[fi].gpuMs;
     auto it = measured.find(f.frame);
     if (it != measured.end()) {
       const FrameMetrics& m = *it->second;

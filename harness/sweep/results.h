@@ -1,6 +1,7 @@
 #pragma once
 // Result files (design section 7): run.json, cases/<id>.json, frames.csv, summary.json.
 // Every write is atomic (temp file + rename), so a killed run leaves no corrupt file.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct CaseResult {
   nlohmann::json matched;             // matched-comparison search result (null when off)
   std::vector<std::string> images;  // relative to the run dir
   double seconds = 0;
+  // Timing modes other than shaded (issue 13): mode -> frames in the order of `frames`.
+  std::map<std::string, std::vector<FrameResult>> modeFrames;
+  nlohmann::json calibration;  // clock-control calibration (null when off)
 };
 
 void writeFileAtomic(const std::string& path, const std::string& contents);

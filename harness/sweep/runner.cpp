@@ -19,6 +19,7 @@
 #include "schemes/registry.h"
 #include "results/run_dir.h"
 #include "sweep/gbench_json.h"
+#include "sweep/timing_passes.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 
@@ -82,6 +83,13 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };
 
+  // Clock control: a fixed workload until its time is stable, so every case starts at a settled clock.
+  std::unique_ptr<Calibrator> calibrator;
+  CalibrationRun calibrationBefore;
+  if (config.timing.calibrate) {
+    calibrator = std::make_unique<Calibrator>(ctx, terrain, settings, config.timing, pose(0));
+    calibrationBefore = calibrator->untilStable();
+  }
   // Warm-up: the first pose, unrecorded, so caches, clocks and pipelines settle.
   for (int i = 0; i < config.warmupFrames; ++i) renderer.submitFrame(-1, pose(0), pose(0));
   renderer.finish();
@@ -100,6 +108,16 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     }
   renderer.finish();
   for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
+  // Other timing modes: separate replays of the path; their tessellation counters must match.
+  for (const std::string& m : config.timing.modes) {
+    if (m == "shaded") continue;
+    if (gStop) throw Interrupted();
+    auto replay = replayInMode(renderer, timingRenderMode(m), frames, config.repetitions, config.warmupFrames, pose);
+    std::string mismatch = compareTessellationCounters(result.frames, replay, m);
+    if (!mismatch.empty()) throw std::runtime_error("timing modes disagree: " + mismatch);
+    result.modeFrames[m] = std::move(replay);
+  }
+  if (calibrator) result.calibration = calibrationJson(calibrationBefore, calibrator->runOnce(), config.timing);
   result.targetAreaPx = scheme->targetAreaPx(renderer.params());
 
   // Measurement passes run after every timed frame, so they cannot perturb the timings.

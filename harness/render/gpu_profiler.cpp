@@ -1,0 +1,88 @@
+// Query pools of the frame ring: two timestamps and one statistics query per slot.
+#include "render/gpu_profiler.h"
+
+#include <vector>
+
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace lb {
+
+namespace {
+enum Query : uint32_t { kQueryTop = 0, kQueryBottom = 1, kTimestampsPerSlot = 2 };
+}
+
+uint64_t timestampMaskFromValidBits(uint32_t validBits) {
+  if (validBits == 0) return 0;
+  return validBits >= 64 ? ~0ull : (1ull << validBits) - 1;
+}
+
+GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
+  // The queue family says how many timestamp bits are valid; wrap-around is masked with them.
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, families.data());
+  if (ctx.queueFamily < n) mask_ = timestampMaskFromValidBits(families[ctx.queueFamily].timestampValidBits);
+  periodNs_ = double(ctx.props.limits.timestampPeriod);
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = uint32_t(slots) * kTimestampsPerSlot;
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &timestamps_));
+  qi.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+  qi.queryCount = uint32_t(slots);
+  qi.pipelineStatistics =
+      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT | VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &stats_));
+}
+
+GpuProfiler::~GpuProfiler() {
+  vkDestroyQueryPool(ctx_.device, stats_, nullptr);
+  vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
+}
+
+void GpuProfiler::reset(VkCommandBuffer cmd, int slot) {
+  vkCmdResetQueryPool(cmd, timestamps_, uint32_t(slot) * kTimestampsPerSlot, kTimestampsPerSlot);
+  vkCmdResetQueryPool(cmd, stats_, uint32_t(slot), 1);
+}
+
+void GpuProfiler::timestampTop(VkCommandBuffer cmd, int slot) {
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, uint32_t(slot) * kTimestampsPerSlot + kQueryTop);
+}
+
+void GpuProfiler::timestampBottom(VkCommandBuffer cmd, int slot) {
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps_,
+                       uint32_t(slot) * kTimestampsPerSlot + kQueryBottom);
+}
+
+void GpuProfiler::beginStats(VkCommandBuffer cmd, int slot) { vkCmdBeginQuery(cmd, stats_, uint32_t(slot), 0); }
+void GpuProfiler::endStats(VkCommandBuffer cmd, int slot) { vkCmdEndQuery(cmd, stats_, uint32_t(slot)); }
+
+GpuSample GpuProfiler::read(int slot) {
+  uint64_t ts[kTimestampsPerSlot];
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(slot) * kTimestampsPerSlot, kTimestampsPerSlot,
+                                 sizeof ts, ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  uint64_t st[8];
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(slot), 1, sizeof st, st, sizeof st,
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  GpuSample s;
+  s.gpuMs = double((ts[kQueryBottom] - ts[kQueryTop]) & mask_) * periodNs_ * 1e-6;
+  // Results come in the order of the statistic bits: IA, VS, clipping (0x20, 0x40), FS (0x80),
+  // then tessellation control (0x100) and evaluation (0x200).
+  s.stats.iaVertices = st[0];
+  s.stats.iaPrimitives = st[1];
+  s.stats.vsInvocations = st[2];
+  s.stats.clipInvocations = st[3];
+  s.stats.clipPrimitives = st[4];
+  s.stats.fsInvocations = st[5];
+  s.stats.tcsPatches = st[6];
+  s.stats.tesInvocations = st[7];
+  return s;
+}
+
+}  // namespace lb

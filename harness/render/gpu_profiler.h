@@ -1,0 +1,54 @@
+#pragma once
+// GPU timestamps and pipeline statistics of a ring of frames in flight, in one place: the
+// renderer records begin/end around its draws and reads a slot back after that slot's fence.
+// The probe (render/probe.h) uses the same unit, so both sides of a comparison time alike.
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+namespace lb {
+
+struct Context;
+
+struct PipelineStats {
+  uint64_t iaVertices = 0, iaPrimitives = 0, vsInvocations = 0;
+  uint64_t tcsPatches = 0, tesInvocations = 0;
+  uint64_t clipInvocations = 0, clipPrimitives = 0, fsInvocations = 0;
+};
+
+struct GpuSample {
+  double gpuMs = 0;  // closing minus opening timestamp, masked to the valid bits, x timestampPeriod
+  PipelineStats stats;
+};
+
+class GpuProfiler {
+ public:
+  GpuProfiler(Context& ctx, int slots);
+  ~GpuProfiler();
+  GpuProfiler(const GpuProfiler&) = delete;
+  GpuProfiler& operator=(const GpuProfiler&) = delete;
+
+  // Outside a render pass: resets the slot's queries.
+  void reset(VkCommandBuffer cmd, int slot);
+  void timestampTop(VkCommandBuffer cmd, int slot);
+  void timestampBottom(VkCommandBuffer cmd, int slot);
+  void beginStats(VkCommandBuffer cmd, int slot);
+  void endStats(VkCommandBuffer cmd, int slot);
+  // After the slot's fence: waits for its results (they are available by then).
+  GpuSample read(int slot);
+
+  // Mask of the bits the queue's timestamps carry (timestampValidBits; 0 = no timestamps).
+  uint64_t timestampMask() const { return mask_; }
+  double periodNs() const { return periodNs_; }
+
+ private:
+  Context& ctx_;
+  VkQueryPool timestamps_ = VK_NULL_HANDLE, stats_ = VK_NULL_HANDLE;
+  uint64_t mask_ = 0;
+  double periodNs_ = 0;
+};
+
+// Timestamp mask from a queue family's timestampValidBits (64 -> all bits, 0 -> none).
+uint64_t timestampMaskFromValidBits(uint32_t validBits);
+
+}  // namespace lb

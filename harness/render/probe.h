@@ -1,0 +1,39 @@
+#pragma once
+// `lodbench probe`: the minimal tessellation loop (issue 13). One VS/TCS/TES(/FS) pipeline with a
+// constant-colour fragment shader, the base grid, one uniform level, one camera: nothing else
+// (no uniform buffer, no LOD decision, no shading). Timed with the renderer's GpuProfiler, so its
+// GPU time is the floor lodbench's own frame is compared against.
+#include <string>
+#include <vector>
+
+#include "camera/camera_path.h"
+#include "render/gpu_profiler.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+struct Context;
+struct Heightfield;
+
+struct ProbeOptions {
+  int width = 320, height = 180, grid = 32;
+  float level = 1;
+  RenderMode mode = RenderMode::Shaded;  // Shaded (constant colour), Depth or Frontend
+  int warmup = 20, frames = 100;
+  // Split draws like the renderer (kMaxVerticesPerDraw / kMaxIndicesPerDraw); needed on lavapipe,
+  // whose tessellator indices are 16-bit. Elsewhere the probe draws every patch in one call.
+  bool split = true;
+};
+
+struct ProbeResult {
+  std::vector<double> gpuMs;  // per timed frame
+  double medianMs = 0;
+  PipelineStats stats;        // of the last frame
+  uint32_t draws = 0;
+};
+
+ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose& pose, const ProbeOptions& options);
+// True where the renderer's draw limits apply (Mesa lavapipe).
+bool probeNeedsSplit(const Context& ctx);
+
+}  // namespace lb

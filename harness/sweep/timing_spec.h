@@ -1,0 +1,22 @@
+#pragma once
+// Config of the timing side of a case (issue 13): which timing modes replay the path, and the
+// clock-control calibration run before and after the timed frames.
+#include <string>
+#include <vector>
+
+namespace lb {
+
+struct TimingSpec {
+  // "shaded" (always timed: the case's gpu_ms), "depth", "frontend" (see RenderMode).
+  std::vector<std::string> modes{"shaded"};
+  // Calibration: uniform `level` on the case's grid and resolution, `frames` frames per run (their
+  // median is the run's time), repeated until 3 consecutive runs lie within `tolerance` of each
+  // other or `maxTries` runs were made; again after the timed frames. Off unless configured.
+  bool calibrate = false;
+  int level = 16, frames = 5, maxTries = 12;
+  double tolerance = 0.01;  // stable: (max - min) / median of the last 3 runs
+  double driftLimit = 0.02; // flagged: |after / before - 1| above this
+  double testDrift = 0;     // tests only (never from JSON): the after-run's time x (1 + testDrift)
+};
+
+}  // namespace lb
