@@ -181,10 +181,10 @@ std::vector<Row> rows() {
        {"c.json:4", "'/schemes/0/params/level'", "empty list"}},
       {"params_not_object", {{"c.json", cfgScheme("{\"name\": \"uniform\", \"params\": [1]}")}}, kRun,
        {"c.json:4", "'/schemes/0/params'"}},
-      {"distance_empty_range", {{"c.json", cfgScheme("{\"name\": \"distance\", \"params\": {\"dmin\": 50, \"dmax\": 50}}")}},
+      {"distance_empty_range", {{"c.json", cfgScheme("{\"name\": \"distance\", \"params\": {\"dmin\": 0.5, \"dmax\": 0.5}}")}},
        kRun,
        {"c.json:4", "'/schemes/0/params'", "dmin"}},
-      {"interlock_empty_range", {{"c.json", cfgScheme("{\"name\": \"interlock\", \"params\": {\"dmin\": 50, \"dmax\": 50}}")}},
+      {"interlock_empty_range", {{"c.json", cfgScheme("{\"name\": \"interlock\", \"params\": {\"dmin\": 0.5, \"dmax\": 0.5}}")}},
        kRun,
        {"c.json:4", "'/schemes/0/params'", "dmin"}},
       // --- images, measurement, matching

@@ -148,7 +148,7 @@ TEST(Config, IgnoredFieldsAndUnreachableFramesAreRejected) {
 TEST(Config, EmptyDistanceRangesAreRejectedForEveryScheme) {
   for (const char* scheme : {"distance", "interlock", "planefit"}) {
     std::string e = errorOf(std::string("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"") + scheme +
-                            "\", \"params\": {\"dmin\": 70, \"dmax\": 70}}]}");
+                            "\", \"params\": {\"dmin\": 0.7, \"dmax\": 0.7}}]}");
     EXPECT_NE(e.find("/schemes/0/params"), std::string::npos) << scheme << ": " << e;
     EXPECT_NE(e.find("dmin"), std::string::npos) << scheme << ": " << e;
   }
