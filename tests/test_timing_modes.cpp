@@ -123,7 +123,7 @@ TEST(Calibration, SweepRecordsModesAndFlagsPlantedDrift) {
     "name": "timing", "resolution": [48, 32], "grid": 4, "fps": 10, "warmup_frames": 1, "max_frames": 3,
     "terrain": {"type": "procedural", "size": 33, "seed": 5}, "paths": ["paths/flyover.csv"],
     "schemes": [{"name": "uniform", "params": {"level": 3}}],
-    "timing": ["shaded", "depth", "frontend"], "calibration": {"level": 4, "frames": 2, "max_tries": 4}
+    "timing": ["shaded", "depth", "frontend"], "calibration": {"level": 4, "frames": 2, "max_tries": 4, "min_load_s": 0.2}
   })",
                          "timing.json", dir);
   for (double drift : {0.0, 0.5}) {
@@ -145,6 +145,7 @@ TEST(Calibration, SweepRecordsModesAndFlagsPlantedDrift) {
     const auto& cal = s["calibration"];
     EXPECT_GT(cal["before_ms"].get<double>(), 0.0);
     EXPECT_GT(cal["after_ms"].get<double>(), 0.0);
+    EXPECT_GE(cal["load_s"].get<double>(), 0.2);  // sustained load before the counted runs
     EXPECT_GE(cal["before_runs"].size(), 1u);
     EXPECT_LE(cal["before_runs"].size(), 4u);
     EXPECT_EQ(cal["stable_before"].get<bool>(), calibrationStable(cal["before_runs"].get<std::vector<double>>(), 0.01));

@@ -328,10 +328,11 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     if (k.is_boolean()) {
       c.timing.calibrate = k.get<bool>();
     } else {
-      r.onlyKeys(k, "/calibration", {"level", "frames", "max_tries"});
+      r.onlyKeys(k, "/calibration", {"level", "frames", "max_tries", "min_load_s"});
       c.timing.calibrate = true;
       if (k.contains("level")) c.timing.level = r.integer(k["level"], "/calibration/level", 1, 64);
       if (k.contains("frames")) c.timing.frames = r.integer(k["frames"], "/calibration/frames", 1, 1000);
+      if (k.contains("min_load_s")) c.timing.minLoadS = r.number(k["min_load_s"], "/calibration/min_load_s", 0, 60);
       if (k.contains("max_tries")) c.timing.maxTries = r.integer(k["max_tries"], "/calibration/max_tries", 3, 1000);
     }
   }

@@ -1,6 +1,7 @@
 // Timing-mode replays, their counter cross-check, and clock-control calibration.
 #include "sweep/timing_passes.h"
 
+#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -84,6 +85,10 @@ double Calibrator::runOnce() {
 
 CalibrationRun Calibrator::untilStable() {
   CalibrationRun run;
+  auto t0 = std::chrono::steady_clock::now();
+  auto loaded = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  while (loaded() < spec_.minLoadS) runOnce();
+  run.loadS = loaded();
   while (int(run.runsMs.size()) < spec_.maxTries) {
     run.runsMs.push_back(runOnce());
     if (calibrationStable(run.runsMs, spec_.tolerance)) {
@@ -102,6 +107,7 @@ nlohmann::json calibrationJson(const CalibrationRun& before, double afterMs, con
                       {"before_ms", b},
                       {"after_ms", a},
                       {"before_runs", before.runsMs},
+                      {"load_s", before.loadS},
                       {"stable_before", before.stable},
                       {"drift", std::isfinite(drift) ? nlohmann::json(drift) : nlohmann::json(nullptr)},
                       {"flagged", !std::isfinite(drift) || std::abs(drift) > spec.driftLimit}};

@@ -34,6 +34,7 @@ std::string compareTessellationCounters(const std::vector<FrameResult>& shaded, 
 struct CalibrationRun {
   std::vector<double> runsMs;  // each run's median frame time, in order
   bool stable = false;         // the last 3 runs lie within the tolerance
+  double loadS = 0;            // seconds of sustained calibration load before the first counted run
   double ms() const { return runsMs.empty() ? 0 : runsMs.back(); }
 };
 // True when the last 3 values lie within `tolerance` ((max - min) / median).
