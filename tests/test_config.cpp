@@ -45,6 +45,28 @@ TEST(Config, CartesianProductOfParametersPathsAndTerrains) {
   EXPECT_EQ(cases[0].params.at("tri_size"), 1.0);
 }
 
+TEST(Config, GridsMakeOneCasePerGridWithTheGridInIdAndDigest) {
+  const char* one = R"({"name": "t", "paths": ["paths/flyover.csv"], "grid": 64, "schemes": ["sphere"]})";
+  Config c1 = parseConfig(one, "t.json", kBase);
+  Config c = parseConfig(R"({"name": "t", "paths": ["paths/flyover.csv"], "grids": [64, 128],
+    "schemes": ["sphere", "uniform"]})", "t.json", kBase);
+  auto cases = expandCases(c);
+  ASSERT_EQ(cases.size(), 4u);
+  EXPECT_EQ(cases[0].grid, 64);
+  EXPECT_EQ(cases[2].grid, 128);
+  EXPECT_EQ(cases[2].id, "sphere_proc1024s1_flyover_320x180_g128");
+  EXPECT_EQ(cases[2].inputs["measurement"]["grid"], 128);
+  EXPECT_NE(cases[0].digest, cases[2].digest);
+  // A single grid keeps the readable id and the digest a "grid" config always had.
+  auto single = expandCases(c1);
+  EXPECT_EQ(single[0].id, "sphere_proc1024s1_flyover_320x180");
+  EXPECT_EQ(single[0].digest, cases[0].digest);
+  EXPECT_NE(errorOf(R"({"name": "t", "paths": ["paths/flyover.csv"], "grid": 64, "grids": [64],
+    "schemes": ["sphere"]})").find("/grids"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"name": "t", "paths": ["paths/flyover.csv"], "grids": [64, 64],
+    "schemes": ["sphere"]})").find("field '/grids/1': grid listed twice"), std::string::npos);
+}
+
 TEST(Config, ErrorsNameFileLineAndField) {
   std::string e = errorOf("{\n  \"name\": \"x\",\n  \"paths\": [\"paths/flyover.csv\"],\n  \"grid\": \"big\",\n"
                           "  \"schemes\": [\"sphere\"]\n}");

@@ -210,7 +210,7 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
   json j = parseJsonStrict(text, file);
   Reader r{file, jsonLineMap(text)};
-  r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "fps", "warmup_frames", "max_frames",
+  r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "grids", "fps", "warmup_frames", "max_frames",
                      "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
                      "description", "timing", "calibration"});
   Config c;
@@ -237,7 +237,20 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
       c.resolutions.push_back(pair(v, ptr));
     }
   }
+  if (j.contains("grid") && j.contains("grids")) r.fail("/grids", "give either grid or grids, not both");
   if (j.contains("grid")) c.grid = r.integer(j["grid"], "/grid", 1, 1024);
+  c.grids = {c.grid};
+  if (j.contains("grids")) {
+    const json& g = j["grids"];
+    if (!g.is_array() || g.empty()) r.fail("/grids", "expected a non-empty list of patch counts per side");
+    c.grids.clear();
+    for (size_t i = 0; i < g.size(); ++i) {
+      std::string at = "/grids/" + std::to_string(i);
+      c.grids.push_back(r.integer(g[i], at, 1, 1024));
+      if (std::count(c.grids.begin(), c.grids.end(), c.grids.back()) > 1) r.fail(at, "grid listed twice; remove one");
+    }
+    c.grid = c.grids.front();
+  }
   if (j.contains("fps")) c.fps = r.number(j["fps"], "/fps", 1, 1000);
   if (j.contains("warmup_frames")) c.warmupFrames = r.integer(j["warmup_frames"], "/warmup_frames", 0, 100000);
   if (j.contains("max_frames")) c.maxFrames = r.integer(j["max_frames"], "/max_frames", 0, 10000000);
@@ -463,9 +476,11 @@ std::vector<Case> expandCases(const Config& config) {
     if (std::count(labels.begin(), labels.end(), labels[i]) > 1)
       labels[i] += "-" + inputsDigest(terrains[i]).substr(0, 6);
 
-  const nlohmann::json measurement = measurementInputs(config);
   std::vector<Case> cases;
-  for (size_t ti = 0; ti < config.terrains.size(); ++ti)
+  for (int grid : config.grids) {
+   nlohmann::json measurement = measurementInputs(config);
+   measurement["grid"] = grid;
+   for (size_t ti = 0; ti < config.terrains.size(); ++ti)
     for (size_t pi = 0; pi < config.paths.size(); ++pi)
       for (auto& res : config.resolutions)
         for (auto& v : variants) {
@@ -476,6 +491,8 @@ std::vector<Case> expandCases(const Config& config) {
           for (auto& [k, val] : v.params) c.id += "-" + k + formatNumber(val);
           c.id += "_" + c.terrainLabel + "_" + fileStem(path) + "_" + std::to_string(res.first) + "x" +
                   std::to_string(res.second);
+          if (config.grids.size() > 1) c.id += "_g" + std::to_string(grid);
+          c.grid = grid;
           if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
           nlohmann::json params = nlohmann::json::object();
           for (auto& [k, val] : v.params) params[k] = val;
@@ -484,6 +501,7 @@ std::vector<Case> expandCases(const Config& config) {
           c.terrainDigest = inputsDigest(terrains[ti]);
           cases.push_back(std::move(c));
         }
+  }
   // Readable parts that still coincide (paths with one stem in two folders, parameter values equal
   // to 6 digits): a digest suffix on each.
   std::map<std::string, int> count;

@@ -30,6 +30,7 @@ struct Config {
   std::string device;      // "" = default (lavapipe where present)
   std::vector<std::pair<int, int>> resolutions{{320, 180}};
   int grid = 32;
+  std::vector<int> grids{32};  // "grid" or "grids": one case per grid (scale studies)
   double fps = 30;
   int warmupFrames = 5;
   int maxFrames = 0;       // 0 = every frame of the path
@@ -54,6 +55,7 @@ struct Case {
   std::string terrainLabel;
   std::string path;
   int width = 0, height = 0;
+  int grid = 32;
   // What defines the case (results/case_identity.h) and its SHA-256: resume reuses a finished
   // case only when the digest is unchanged.
   nlohmann::json inputs;

@@ -26,7 +26,7 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
     if (p.name == out.param) ps = &p;
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
-  Renderer r(ctx, terrain, {c.width, c.height, config.grid});
+  Renderer r(ctx, terrain, {c.width, c.height, c.grid});
 
   auto evaluate = [&](double v) {
     ParamValues pv = base;

@@ -226,6 +226,7 @@ json caseJson(const Case& c, const CaseResult& r) {
                        {"height_scale", c.terrain.heightScale}}},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
+          {"grid", c.grid},
           {"image_reference", kImageReference},
           {"status", r.status},
           {"reason", r.reason},

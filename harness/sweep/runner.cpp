@@ -68,7 +68,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
   Heightfield terrain = makeHeightfield(c.terrain);
   CameraPath path = loadCameraPath(c.path);
-  RenderSettings settings{c.width, c.height, config.grid, config.testSlowdown};
+  RenderSettings settings{c.width, c.height, c.grid, config.testSlowdown};
   ParamValues params = c.params;
   if (config.match.on()) {
     MatchResult m = matchParameter(ctx, *scheme, params, terrain, path, config, c);
