@@ -8,6 +8,8 @@ set -euo pipefail
 build=$1 out=$2
 shift 2
 export LODBENCH_SHADER_DIR=$build/shaders
+# The carried tree's .git may be stale: the commit the build was made from travels as BUILD_DIR/COMMIT.
+[[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
 mkdir -p "$out"
 limit=$out/limit.json
 rm -f "$limit"

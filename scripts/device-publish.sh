@@ -10,6 +10,8 @@ set -euo pipefail
 build=$1 out=$2
 shift 2
 export LODBENCH_SHADER_DIR=$build/shaders
+# The carried tree's .git may be stale: the commit the build was made from travels as BUILD_DIR/COMMIT.
+[[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
 work=$(mktemp -d)
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$work/gpu.txt"
 "$build/lodbench" devices | tee -a "$work/gpu.txt"

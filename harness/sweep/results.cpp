@@ -33,6 +33,8 @@ void writeFileAtomic(const std::string& path, const std::string& contents) {
 }
 
 std::string gitCommit() {
+  // Set where the tree travels with a stale or no .git (a build carried to a GPU machine): it wins.
+  if (const char* env = std::getenv("LODBENCH_GIT_COMMIT"); env && *env) return env;
   std::string cmd = std::string("git -C '") + LODBENCH_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null";
   std::array<char, 128> buf{};
   std::string out;
@@ -41,10 +43,7 @@ std::string gitCommit() {
     pclose(p);
   }
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  if (out.empty()) {
-    const char* env = std::getenv("LODBENCH_GIT_COMMIT");  // set where the tree travels without .git
-    return env && *env ? env : "unknown";
-  }
+  if (out.empty()) return "unknown";
   std::string dirtyCmd = std::string("git -C '") + LODBENCH_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null";
   if (FILE* p = popen(dirtyCmd.c_str(), "r")) {
     if (fgets(buf.data(), int(buf.size()), p)) out += "-dirty";
