@@ -10,6 +10,7 @@
 #define LB_BINDING_SCHEME_BUF 5 // scheme storage buffer (e.g. tile adjacency)
 #define LB_BINDING_HISTOGRAM 7  // triangle-size histogram (measurement pass)
 #define LB_BINDING_SCHEME_IMAGE 6 // compute preprocessing only: the scheme texture as a storage image
+#define LB_BINDING_NORMAL 8     // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer

@@ -1,9 +1,14 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Identical shading for every scheme: per-pixel normals from the heightfield, one directional light.
+// Identical shading for every scheme: per-pixel normals from the terrain's normal map (one filtered
+// fetch, issue 13), one directional light.
 #include "common.glsl"
 
 layout(constant_id = 0) const int kMode = LB_MODE_SHADED;
+// Testing only (RenderSettings::testHeightNormals): the pre-issue-13 normal, rebuilt per pixel from
+// four bilinear height lookups, so tests can compare images and counters with it.
+layout(constant_id = 1) const bool kHeightNormals = false;
+layout(set = 0, binding = LB_BINDING_NORMAL) uniform sampler2D normalMap;
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in float inLevel;
 layout(location = 0) out vec4 outColor;
@@ -12,6 +17,15 @@ vec3 heat(float level) {
   // log2 scale: 1 -> blue, 8 -> green, 64 -> red
   float t = clamp(log2(max(level, 1.0)) / 6.0, 0.0, 1.0);
   return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
+}
+
+// Texel coordinate t as terrainHeight() computes it (texel i's centre at i), so the filtered gradient
+// is the one terrainNormal() computed here before; lb::sampleNormalMap is the CPU twin.
+vec3 mapNormal(vec2 worldXZ) {
+  vec2 size = frame.terrain.zw;
+  vec2 t = clamp((worldXZ - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * (size - 1.0);
+  vec2 g = textureLod(normalMap, (t + 0.5) / size, 0.0).rg;
+  return normalize(vec3(g.x, 1.0, g.y));
 }
 
 vec2 toPixels(vec3 world) {
@@ -26,7 +40,7 @@ void main() {
     outColor = vec4(distance(toPixels(inWorld), toPixels(truePoint)), 0.0, 0.0, 1.0);
     return;
   }
-  vec3 n = terrainNormal(inWorld.xz);
+  vec3 n = kHeightNormals ? terrainNormal(inWorld.xz) : mapNormal(inWorld.xz);
   float diffuse = max(dot(n, normalize(frame.light.xyz)), 0.0);
   float shade = 0.25 + 0.75 * diffuse;
   vec3 base;

@@ -9,6 +9,7 @@
 #include "metrics/raycast_shade.h"
 #include "render/renderer.h"
 #include "terrain/heightfield.h"
+#include "terrain/normal_map.h"
 
 namespace lb {
 
@@ -159,6 +160,7 @@ void pixelRay(const glm::dmat4& inv, int px, int py, int width, int height, glm:
 RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width, int height,
                        std::vector<float>* distance, int threads) {
   const MaxMipmap mip = buildMaxMipmap(hf);
+  const NormalMap normals = computeNormalMap(hf);
   CameraMatrices cam = cameraMatrices(pose, float(width) / float(height), hf.extent);
   const glm::dmat4 inv = glm::inverse(glm::dmat4(cam.proj) * glm::dmat4(cam.view));
   RgbaImage img{width, height, std::vector<uint8_t>(size_t(width) * size_t(height) * 4)};
@@ -171,7 +173,7 @@ RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width,
         pixelRay(inv, x, y, width, height, o, d);
         RayHit h = castRay(hf, mip, o, d, 0.0, 1.0);
         size_t i = size_t(y) * size_t(width) + size_t(x);
-        std::array<uint8_t, 4> c = h.hit ? shadeTerrain(hf, float(h.pos.x), float(h.pos.z)) : kClearRgba;
+        std::array<uint8_t, 4> c = h.hit ? shadeTerrain(normals, hf.extent, float(h.pos.x), float(h.pos.z)) : kClearRgba;
         std::copy(c.begin(), c.end(), img.px.begin() + long(i * 4));
         if (distance && h.hit) (*distance)[i] = float(glm::length(h.pos - eye));
       }

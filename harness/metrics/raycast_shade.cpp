@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "terrain/heightfield.h"
+#include "terrain/normal_map.h"
 
 namespace lb {
 
@@ -20,12 +20,8 @@ uint8_t unorm8(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) *
 
 }  // namespace
 
-std::array<uint8_t, 4> shadeTerrain(const Heightfield& hf, float x, float z) {
-  // common.glsl terrainNormal()
-  const float tx = hf.extent / float(hf.width - 1), tz = hf.extent / float(hf.height - 1);
-  float hl = hf.sample(x - tx, z), hr = hf.sample(x + tx, z);
-  float hd = hf.sample(x, z - tz), hu = hf.sample(x, z + tz);
-  glm::vec3 n = glm::normalize(glm::vec3((hl - hr) / (2.0f * tx), 1.0f, (hd - hu) / (2.0f * tz)));
+std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, float x, float z) {
+  glm::vec3 n = sampleNormalMap(normals, extent, x, z);  // terrain.frag mapNormal()
   // The light of Renderer::fillUniforms (harness/render/renderer.cpp).
   static const glm::vec3 light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f));
   float diffuse = std::max(glm::dot(n, light), 0.0f);

@@ -1,19 +1,19 @@
 #pragma once
 // CPU port of shaders/terrain.frag's LB_MODE_SHADED colour, so the ray-cast ground truth
-// (raycast.h) is shaded exactly as the renderer shades: per-pixel normal from central differences
-// of the heightfield one texel apart (common.glsl terrainNormal), one directional light
+// (raycast.h) is shaded exactly as the renderer shades: per-pixel normal from the terrain's normal
+// map, bilinearly filtered (terrain/normal_map.h, the texels the renderer uploads), one directional light
 // (Renderer::fillUniforms), slope-blended base colour, clear colour pure magenta.
 #include <array>
 #include <cstdint>
 
 namespace lb {
 
-struct Heightfield;
+struct NormalMap;
 
 constexpr std::array<uint8_t, 4> kClearRgba = {255, 0, 255, 255};
 
 // RGBA8 (UNORM, round to nearest) of the terrain surface at world (x, z), in float arithmetic as
-// the shader does it.
-std::array<uint8_t, 4> shadeTerrain(const Heightfield& hf, float x, float z);
+// the shader does it. `normals` is computeNormalMap() of the heightfield, extent its Heightfield::extent.
+std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, float x, float z);
 
 }  // namespace lb

@@ -42,6 +42,9 @@ struct RenderSettings {
   // eighth of the patches again, after the statistics query ends and before the closing
   // timestamp, so GPU time grows while the counters stay exact (see record()).
   double testSlowdown = 0;
+  // Testing only: shade with the pre-issue-13 per-pixel normal from four height lookups instead of
+  // the normal map (shaders/terrain.frag kHeightNormals); the geometry and counters are the same.
+  bool testHeightNormals = false;
 };
 
 struct FrameResult {
@@ -142,10 +145,11 @@ class Renderer {
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
-  Image color_, errorTarget_, depth_, height_, schemeTex_;
+  Image color_, errorTarget_, depth_, height_, schemeTex_, normalMap_;
   Buffer histogram_, readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
   VkDeviceSize uniformStride_ = 0;
   VkSampler sampler_ = VK_NULL_HANDLE;
+  VkSampler linearSampler_ = VK_NULL_HANDLE;  // the normal map's
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool descPool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;

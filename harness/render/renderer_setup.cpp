@@ -1,5 +1,6 @@
 // Renderer construction: targets, terrain grid, descriptors and pipelines.
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "render/renderer.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
+#include "terrain/normal_map.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -55,9 +57,10 @@ Renderer::~Renderer() {
   vkDestroyDescriptorPool(ctx_.device, descPool_, nullptr);
   vkDestroyDescriptorSetLayout(ctx_.device, setLayout_, nullptr);
   vkDestroySampler(ctx_.device, sampler_, nullptr);
+  vkDestroySampler(ctx_.device, linearSampler_, nullptr);
   for (Buffer* b : {&histogram_, &readback_, &vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &uniforms_})
     destroyBuffer(ctx_, *b);
-  for (Image* i : {&color_, &errorTarget_, &depth_, &height_, &schemeTex_}) destroyImage(ctx_, *i);
+  for (Image* i : {&color_, &errorTarget_, &depth_, &height_, &schemeTex_, &normalMap_}) destroyImage(ctx_, *i);
 }
 
 void Renderer::createTargets() {
@@ -76,6 +79,13 @@ void Renderer::createTargets() {
   si.magFilter = si.minFilter = VK_FILTER_NEAREST;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VK_CHECK(vkCreateSampler(ctx_.device, &si, nullptr, &sampler_));
+  // Once per terrain; the format is argued in terrain/normal_map.h.
+  NormalMap normals = computeNormalMap(terrain_);
+  createImage(ctx_, normalMap_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
+              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  uploadImage(ctx_, normalMap_, normals.texels.data(), normals.texels.size() * sizeof(uint16_t));
+  si.magFilter = si.minFilter = VK_FILTER_LINEAR;
+  VK_CHECK(vkCreateSampler(ctx_.device, &si, nullptr, &linearSampler_));
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
   createBuffer(ctx_, uniforms_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -126,13 +136,14 @@ void Renderer::createDescriptors() {
       {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   li.bindingCount = uint32_t(std::size(b));
   li.pBindings = b;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx_.device, &li, nullptr, &setLayout_));
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
-                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
   VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pi.maxSets = 1;
@@ -186,6 +197,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
   VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorImageInfo ni{linearSampler_, normalMap_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo bb{bounds_.buffer, 0, VK_WHOLE_SIZE}, cb{capture_.buffer, 0, VK_WHOLE_SIZE},
       sb{schemeBuf_.buffer, 0, VK_WHOLE_SIZE}, hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
   auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* img,
@@ -207,6 +219,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &cb),
       write(LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &sb),
       write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
+      write(LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &ni, nullptr),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
 }
@@ -244,10 +257,15 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
   const bool frontend = mode == RenderMode::Frontend;
   if (colour) mods[3] = loadShaderModule(ctx_, "terrain.frag.spv");
-  int modeValue = int(mode);
+  struct FragSpec {
+    int mode;
+    VkBool32 heightNormals;
+  } fragValues{int(mode), settings_.testHeightNormals};
   VkBool32 captureValue = capture;
-  VkSpecializationMapEntry modeEntry{0, 0, sizeof(int)}, captureEntry{1, 0, sizeof(VkBool32)};
-  VkSpecializationInfo modeSpec{1, &modeEntry, sizeof(int), &modeValue};
+  VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
+  VkSpecializationMapEntry fragEntries[2] = {{0, offsetof(FragSpec, mode), sizeof(int)},
+                                             {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)}};
+  VkSpecializationInfo modeSpec{2, fragEntries, sizeof(FragSpec), &fragValues};
   VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
   if (histogram) mods[4] = loadShaderModule(ctx_, "histogram.geom.spv");
   VkPipelineShaderStageCreateInfo stages[5] = {};

@@ -1,0 +1,44 @@
+#pragma once
+// Per-terrain normal map (issue 13): computed once on the CPU at terrain load, uploaded by the
+// renderer (LB_BINDING_NORMAL) and fetched once per pixel with a linear sampler in
+// shaders/terrain.frag; the ray-cast ground truth (metrics/raycast_shade.h) samples the same texels
+// with the same bilinear weights, so the reference shades exactly as the renderer does.
+//
+// Format: VK_FORMAT_R16G16_SFLOAT holding, per heightfield sample, the x and z components of the
+// unnormalised normal (gx, 1, gz) = ((h[i-1] - h[i+1]) / 2dx, 1, (h[j-1] - h[j+1]) / 2dz), the
+// central differences one texel apart that terrainNormal() (common.glsl) took per pixel before.
+// Why this and not a unit normal in RGBA8_SNORM or RG16_SNORM with a reconstructed y:
+//  - The old per-pixel gradient at any point is exactly the bilinear interpolation of these texel
+//    gradients (the heightfield is bilinear and the differences are one texel apart, clamping
+//    included), so filtering gradients and normalising after the fetch reproduces the old normal
+//    up to rounding; filtering unit normals would not (interpolated unit vectors differ).
+//  - float16 keeps 11 significant bits at any slope: steep DEM cliffs and near-flat valleys alike
+//    (8-bit SNORM normals step by 1/127, about one RGBA8 output level of diffuse light).
+//  - 4 bytes per texel, as RGBA8; linear filtering of R16G16_SFLOAT is mandatory in Vulkan.
+// Slopes beyond the float16 range (|g| > 65504) are clamped: their normal is horizontal to 2e-5.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lb {
+
+struct Heightfield;
+
+struct NormalMap {
+  int width = 0, height = 0;    // the heightfield's sample counts
+  std::vector<uint16_t> texels; // RG16F bit patterns (gx, gz), row-major, row = z
+};
+
+NormalMap computeNormalMap(const Heightfield& hf);
+
+// Unit normal at terrain-local (x, z): bilinear filtering of the texels as a linear sampler does it
+// at texel coordinate t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then
+// normalize(gx, 1, gz), in float as shaders/terrain.frag does it. The GPU's filter weights carry
+// a limited sub-texel precision (8 bits on lavapipe and NVIDIA), so the two agree up to rounding.
+glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z);
+
+uint16_t floatToHalf(float f);  // round to nearest even, clamped to the finite range
+float halfToFloat(uint16_t h);
+
+}  // namespace lb
