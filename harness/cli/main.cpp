@@ -130,7 +130,9 @@ static int renderCmd(const RenderArgs& a) {
     CameraPose pose = samplePose(path, a.fps, a.frame, terrain);
     RenderMode mode = a.wireframe ? RenderMode::Wireframe : a.heatmap ? RenderMode::Heatmap : RenderMode::Shaded;
     FrameResult fr;
+    renderer.setSky(true);  // an image for people; the measurement passes below need the magenta
     auto px = renderer.renderImage(pose, pose, mode, &fr);
+    renderer.setSky(false);
     if (a.error || a.cracks) {
       // Error map and crack mask come from the measurement passes of a run.
       MeasureSpec spec;
@@ -139,7 +141,8 @@ static int renderCmd(const RenderArgs& a) {
       ReferenceCache refs;
       FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame,
                                     pose, pose);
-      px = a.error ? errorImage(m.errorMap, a.width, a.height).px : crackMaskImage(m.shaded, m.crackMask).px;
+      px = a.error ? errorImage(m.errorMap, a.width, a.height).px
+                   : crackMaskImage({a.width, a.height, px}, m.crackMask).px;  // over the sky-shaded frame
       for (auto& [k, v] : m.values) std::printf("%s = %g\n", k.c_str(), v);
     }
     writePng(a.out, a.width, a.height, px);

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -6,4 +7,15 @@
 namespace lb {
 // Writes RGBA8 pixels as PNG atomically (temp file + rename). Throws on failure.
 void writePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba);
+
+// Background of images written for people (run images, `lodbench render`): a light grey-blue sky.
+// Measurement renders keep the clear colour pure magenta (metrics/raycast_shade.h kClearRgba),
+// which no terrain pixel has: crack detection and the image metrics' "no terrain" mask rely on it.
+constexpr std::array<uint8_t, 4> kSkyRgba = {196, 210, 226, 255};
+
+// Nearest-neighbour scaling of RGBA8 or one-byte-per-pixel (mask) images: every output pixel takes
+// the source pixel its centre falls in, so a mask measured at a case's resolution marks the same
+// places on a larger image of the same frame.
+std::vector<uint8_t> scaleNearest(const std::vector<uint8_t>& src, int width, int height, int channels, int outWidth,
+                                  int outHeight);
 }  // namespace lb

@@ -11,6 +11,7 @@
 
 #include "camera/camera_path.h"
 #include "render/compute_pass.h"
+#include "render/image_io.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -48,7 +49,11 @@ void frustumPlanes(const glm::mat4& vp, glm::vec4 planes[6]) {
 }
 
 void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod) {
-  float aspect = float(settings_.width) / float(settings_.height);
+  // The LOD resolution sets the projection and the pixel units, so an image at another size keeps
+  // the case's tessellation exactly (RenderSettings::lodWidth).
+  const float lodW = float(settings_.lodWidth > 0 ? settings_.lodWidth : settings_.width);
+  const float lodH = float(settings_.lodHeight > 0 ? settings_.lodHeight : settings_.height);
+  float aspect = lodW / lodH;
   CameraMatrices v = cameraMatrices(view, aspect, terrain_.extent);
   CameraMatrices l = cameraMatrices(lod, aspect, terrain_.extent);
   FrameUniforms u{};
@@ -57,7 +62,7 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   u.lodProj = l.proj;
   u.lodEye = glm::vec4(l.eye, 1.0f);
   frustumPlanes(cullCamera_ == CullCamera::View ? u.viewProj : l.proj * l.view, u.frustum);
-  u.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / float(settings_.width), 1.0f / float(settings_.height));
+  u.viewport = glm::vec4(lodW, lodH, 1.0f / lodW, 1.0f / lodH);
   u.terrain = glm::vec4(terrain_.extent, float(settings_.grid), float(terrain_.width), float(terrain_.height));
   u.light = glm::vec4(glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f)), 0.0f);
   u.origin = glm::vec4(float(terrain_.originX), float(terrain_.originZ), 0.0f, 0.0f);
@@ -94,6 +99,8 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   ca.clearValue.color = {{1.0f, 0.0f, 1.0f, 1.0f}};  // magenta: no terrain pixel has it
+  if (settings_.sky)  // images for people only: crack detection needs the magenta
+    ca.clearValue.color = {{kSkyRgba[0] / 255.0f, kSkyRgba[1] / 255.0f, kSkyRgba[2] / 255.0f, 1.0f}};
   if (mode == RenderMode::Error) ca.clearValue.color = {{-1.0f, 0.0f, 0.0f, 0.0f}};  // error is never negative
   VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   da.imageView = depth_.view;
@@ -112,21 +119,27 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   vkCmdBeginRendering(cmd, &ri);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
   // planted slowdown below draw after the query ends.
-  profiler_.beginStats(cmd, slotIndex);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
   uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
   VkDeviceSize zero = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
-  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
   // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices or kMaxIndicesPerDraw indices.
-  for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
-    uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
-    DrawPush push{first, {0, 0, 0}};
-    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
-                       &push);
-    vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
-  }
+  auto drawAll = [&](VkPipeline p) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
+    vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+    for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
+      uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
+      DrawPush push{first, {0, 0, 0}};
+      vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                         sizeof push, &push);
+      vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
+    }
+  };
+  // A wireframe alone is a solid mesh of lines at small sizes: its lines are blended over the
+  // shaded frame, drawn first (outside the statistics query, so the counters are one frame's).
+  if (mode == RenderMode::Wireframe) drawAll(pipeline(RenderMode::Shaded, false));
+  profiler_.beginStats(cmd, slotIndex);
+  drawAll(pipe);
   profiler_.endStats(cmd, slotIndex);
   if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
     // Planted regression (tests only), after the statistics query and before the closing timestamp:

@@ -20,7 +20,8 @@ struct Context;
 struct Heightfield;
 struct CameraPose;
 
-// Shaded/Heatmap/Wireframe write RGBA8; Error writes per-pixel screen-space error (R32F, -1 where
+// Shaded/Heatmap/Wireframe write RGBA8 (Wireframe: the shaded frame with the tessellation's edges,
+// coloured by level, blended over it); Error writes per-pixel screen-space error (R32F, -1 where
 // no terrain); Histogram bins triangle areas in a geometry shader and rasterizes nothing.
 // Timing modes (sweep/timing_modes.h): Depth rasterizes into depth only (no colour attachment, no
 // fragment shader); Frontend discards every primitive before rasterization, so only the vertex,
@@ -42,6 +43,13 @@ struct RenderSettings {
   // eighth of the patches again, after the statistics query ends and before the closing
   // timestamp, so GPU time grows while the counters stay exact (see record()).
   double testSlowdown = 0;
+  // Images for people (issue 14): the resolution the LOD decisions, error pixels and histogram
+  // areas assume (0 = width x height). A case's images render its frames at more pixels with the
+  // case's own tessellation: lodWidth x lodHeight = the case's resolution (same aspect ratio).
+  int lodWidth = 0, lodHeight = 0;
+  // Clear colour: magenta (kClearRgba) for measurement and timing frames, or the neutral sky
+  // (kSkyRgba, render/image_io.h) for images written for people; never sky where cracks are detected.
+  bool sky = false;
   // Testing only: shade with the pre-issue-13 per-pixel normal from four height lookups instead of
   // the normal map (shaders/terrain.frag kHeightNormals); the geometry and counters are the same.
   bool testHeightNormals = false;
@@ -106,6 +114,8 @@ class Renderer {
   // (metrics/popping.h) sees only level changes, not holes where the old frustum culled.
   enum class CullCamera { Lod, View };
   void setCullCamera(CullCamera c) { cullCamera_ = c; }
+  // RenderSettings::sky for the frames submitted from now on (images for people between measurements).
+  void setSky(bool on) { settings_.sky = on; }
   CullCamera cullCamera() const { return cullCamera_; }
   // Measurement passes, separate from timing frames (each waits for frames in flight).
   TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr);

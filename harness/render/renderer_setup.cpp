@@ -305,6 +305,12 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   rs.polygonMode = mode == RenderMode::Wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
   rs.cullMode = VK_CULL_MODE_NONE;  // back faces are counted by the histogram pass, not hidden
   rs.lineWidth = 1.0f;
+  // Wireframe lines lie on the shaded surface drawn first (Renderer::record): pulled slightly
+  // towards the camera so the surface under them does not hide them, while hills still do.
+  const bool wire = mode == RenderMode::Wireframe;
+  rs.depthBiasEnable = wire;
+  rs.depthBiasConstantFactor = wire ? -4.0f : 0.0f;
+  rs.depthBiasSlopeFactor = wire ? -1.0f : 0.0f;
   // The histogram pass only counts triangles; the frontend timing mode stops after the tessellator.
   rs.rasterizerDiscardEnable = histogram || frontend;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -315,7 +321,18 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   ds.depthCompareOp = mode == RenderMode::Wireframe ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState att{};
   att.colorWriteMask = 0xf;
+  if (wire) {  // semitransparent, darkened lines: the shaded terrain stays visible under them
+    att.blendEnable = VK_TRUE;
+    att.srcColorBlendFactor = VK_BLEND_FACTOR_CONSTANT_COLOR;
+    att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_ALPHA;
+    att.colorBlendOp = VK_BLEND_OP_ADD;
+    att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+    att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    att.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  // line = 0.5 x level colour + 0.4 x surface: darker than the surface, tinted by the level.
+  if (wire) cb.blendConstants[0] = cb.blendConstants[1] = cb.blendConstants[2] = 0.5f, cb.blendConstants[3] = 0.6f;
   cb.attachmentCount = colour ? 1 : 0;
   cb.pAttachments = colour ? &att : nullptr;
   VkFormat colorFormat = mode == RenderMode::Error ? kErrorFormat : kColorFormat;

@@ -292,7 +292,17 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
     c.schemes.push_back(parseScheme(r, j["schemes"][i], "/schemes/" + std::to_string(i)));
   if (j.contains("images")) {
     const json& im = j["images"];
-    r.onlyKeys(im, "/images", {"frames", "modes"});
+    r.onlyKeys(im, "/images", {"frames", "modes", "resolution", "worst"});
+    if (im.contains("resolution")) {
+      const json& v = im["resolution"];
+      if (!v.is_array() || v.size() != 2) r.fail("/images/resolution", "expected [width, height]");
+      c.images.width = r.integer(v[0], "/images/resolution/0", 16, 8192);
+      c.images.height = r.integer(v[1], "/images/resolution/1", 16, 8192);
+    }
+    if (im.contains("worst")) {
+      if (!im["worst"].is_boolean()) r.fail("/images/worst", "expected true or false");
+      c.images.worst = im["worst"].get<bool>();
+    }
     if (im.contains("frames")) {
       if (!im["frames"].is_array()) r.fail("/images/frames", "expected an array of frame indices");
       for (size_t i = 0; i < im["frames"].size(); ++i) {

@@ -8,6 +8,7 @@
 #include "metrics/histogram_stats.h"
 #include "metrics/popping.h"
 #include "metrics/stats.h"
+#include "render/image_io.h"
 #include "schemes/registry.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
@@ -138,8 +139,8 @@ RgbaImage errorImage(const std::vector<float>& error, int width, int height) {
   RgbaImage img{width, height, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
   for (size_t i = 0; i < error.size(); ++i) {
     uint8_t* p = &img.px[i * 4];
-    if (error[i] < 0) {
-      p[0] = 255, p[1] = 0, p[2] = 255;
+    if (error[i] < 0) {  // no terrain: the sky of images for people
+      p[0] = kSkyRgba[0], p[1] = kSkyRgba[1], p[2] = kSkyRgba[2];
       continue;
     }
     // sqrt scale so sub-pixel errors stay visible: 0 px black, 8 px and more white.

@@ -51,7 +51,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme
 
 // Column names of the measurement part of frames.csv, in order.
 std::vector<std::string> metricColumns();
-// Error map visualisation: 0 px black .. >= 8 px white (sqrt scale), clear colour where no terrain.
+// Error map visualisation: 0 px black .. >= 8 px white (sqrt scale), sky (kSkyRgba) where no terrain.
 RgbaImage errorImage(const std::vector<float>& error, int width, int height);
 
 }  // namespace lb

@@ -16,6 +16,7 @@
 #include "error.h"
 #include "metrics/cracks.h"
 #include "render/image_io.h"
+#include "sweep/case_images.h"
 #include "schemes/registry.h"
 #include "results/run_dir.h"
 #include "sweep/gbench_json.h"
@@ -145,34 +146,12 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     }
   }
 
-  // Images are separate passes after the timed frames, never inside them.
-  for (int f : config.images.frames) {
-    int frame = f < 0 ? frames + f : f;
-    if (frame < 0 || frame >= frames) continue;
-    for (auto& modeName : config.images.modes) {
-      std::string name = c.id + "_f" + std::to_string(frame) + "_" + modeName + ".png";
-      if (modeName == "error" || modeName == "cracks") {
-        if (!kept.count(frame)) {
-          MeasureSpec one = ms;
-          one.every = 1;
-          one.passes = {"error", "cracks"};
-          kept[frame] = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), one, refs,
-                                     frame, pose(std::max(0, frame - 1)), pose(frame));
-        }
-        const FrameMetrics& m = kept[frame];
-        if (modeName == "error" && !m.errorMap.empty())
-          writePng(imageDir + "/" + name, c.width, c.height, errorImage(m.errorMap, c.width, c.height).px);
-        else if (modeName == "cracks" && !m.crackMask.empty())
-          writePng(imageDir + "/" + name, c.width, c.height, crackMaskImage(m.shaded, m.crackMask).px);
-        else
-          continue;
-      } else {
-        RenderMode mode = parseRenderMode(modeName);
-        if (mode == RenderMode::Wireframe && !ctx.enabledFeatures.fillModeNonSolid) continue;
-        writePng(imageDir + "/" + name, c.width, c.height, renderer.renderImage(pose(frame), pose(frame), mode));
-      }
-      result.images.push_back("images/" + name);
-    }
+  // Images for people are separate passes after the timed and measured frames, never inside them
+  // (sweep/case_images.h): the configured frames and the worst measured ones.
+  if (!config.images.modes.empty()) {
+    json worst = result.metrics.empty() ? json() : caseSummary(result).value("worst_frames", json());
+    CaseImageInputs in{ctx, c, config, *scheme, renderer, terrain, referenceKey(c), refs, pose, imageDir};
+    result.images = writeCaseImages(in, imageFrames(config.images, frames, worst), kept);
   }
   result.seconds = secondsSince(t0);
   return result;
