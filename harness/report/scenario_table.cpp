@@ -1,10 +1,56 @@
 #include "report/scenario_table.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
 
+#include "report/page_assets.h"
 #include "report/report_tables.h"
 
 namespace lb {
+
+namespace {
+
+// "triangles" is the per-frame clip_primitives counter (primitives that reached clipping).
+std::string frameKey(const std::string& metric) {
+  return metric == "triangles" ? "clip_primitives" : metric;
+}
+
+struct CaseMetric {
+  std::optional<double> mean, worst;
+  int worstFrame = -1;
+};
+
+CaseMetric caseMetric(const ReportCase& c, const std::string& metric) {
+  const std::string key = frameKey(metric);
+  const bool lowerIsWorse = higherIsBetter(metric);
+  CaseMetric m;
+  double sum = 0;
+  int n = 0;
+  for (const auto& f : c.frames) {
+    auto v = frameValue(f, key);
+    if (!v) continue;
+    sum += *v, ++n;
+    if (!m.worst || (lowerIsWorse ? *v < *m.worst : *v > *m.worst)) {
+      m.worst = v;
+      m.worstFrame = f.value("frame", -1);
+    }
+  }
+  if (n) m.mean = sum / n;
+  return m;
+}
+
+// White (best) to dark red (worst), linear in badness; text turns white on the dark end.
+std::string badnessStyle(double b) {
+  auto mix = [&](int from, int to) { return int(std::lround(from + (to - from) * b)); };
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "style=\"background:#%02x%02x%02x;color:%s\"", mix(255, 165), mix(255, 0),
+                mix(255, 38), b > 0.6 ? "#fff" : "#222");
+  return buf;
+}
+
+}  // namespace
 
 std::string scenarioDescription(const ReportRun& run) {
   if (run.name.rfind("scenario-", 0) != 0 || !run.context.contains("config")) return "";
@@ -14,9 +60,9 @@ std::string scenarioDescription(const ReportRun& run) {
 }
 
 std::string scenarioMetric(const std::string& description) {
-  static const char* const kMetrics[] = {"saturated_patches", "err_mean_px", "err_p95_px",   "err_max_px",
-                                         "cracks_analytic",   "cracks_pixels", "pop_mean",   "pop_changed",
-                                         "img_frac_over",     "img_psnr_db",   "triangles"};
+  static const char* const kMetrics[] = {"saturated_patches", "err_mean_px",  "err_p95_px",  "err_max_px",
+                                         "cracks_analytic",   "cracks_pixels", "pop_mean",    "pop_changed",
+                                         "img_frac_over",     "img_psnr_db",   "img_ssim",    "triangles"};
   const size_t from = description.find("Shows in");
   if (from == std::string::npos) return "";
   size_t best = std::string::npos;
@@ -28,37 +74,111 @@ std::string scenarioMetric(const std::string& description) {
   return metric;
 }
 
+bool higherIsBetter(const std::string& metric) {
+  return metric == "img_psnr_db" || metric == "img_ssim";
+}
+
+double badness(double value, double best, double worst) {
+  const double span = std::fabs(worst - best);
+  return span > 0 ? std::min(1.0, std::fabs(value - best) / span) : 0.0;
+}
+
+std::string scenarioGridRule(const std::string& metric) {
+  return std::string("Each cell: the case's mean of ") + metric +
+         " over its measured frames. Colour, per scenario row: 0 (white) = the best case on that scenario (" +
+         (higherIsBetter(metric) ? "highest" : "lowest") +
+         "), 1 (dark red) = the worst, linear in between: (value - best) / (worst - best); the Markdown shows this "
+         "score in brackets. A row where every case is equal stays white. Click a cell for its row below.";
+}
+
+int scenarioWorstFrame(const ReportCase& c, const std::string& metric) {
+  return caseMetric(c, metric).worstFrame;
+}
+
+std::string scenarioRowId(const std::string& caseId) {
+  return "scn-" + caseId;
+}
+
+std::vector<std::string> gridColumns(const std::vector<const ReportRun*>& runs) {
+  std::vector<std::string> columns;  // scheme + parameters, in case order
+  for (const ReportRun* run : runs)
+    for (const ReportCase& c : run->cases)
+      if (std::find(columns.begin(), columns.end(), c.label) == columns.end()) columns.push_back(c.label);
+  return columns;
+}
+
+std::vector<Cell> gridCells(const std::vector<const ReportCase*>& cases, const std::vector<std::string>& columns,
+                            const std::string& metric, const std::string& mdPrefix, const std::string& htmlPrefix) {
+  std::map<std::string, std::pair<const ReportCase*, std::optional<double>>> byLabel;
+  std::optional<double> best, worst;
+  const bool up = higherIsBetter(metric);
+  for (const ReportCase* c : cases) {
+    std::optional<double> v = c->status == "ok" ? caseMetric(*c, metric).mean : std::nullopt;
+    byLabel[c->label] = {c, v};
+    if (!v) continue;
+    if (!best || (up ? *v > *best : *v < *best)) best = v;
+    if (!worst || (up ? *v < *worst : *v > *worst)) worst = v;
+  }
+  std::vector<Cell> row;
+  for (auto& col : columns) {
+    auto it = byLabel.find(col);
+    if (it == byLabel.end()) {
+      row.push_back(textCell(""));  // this scheme and parameters did not run on this scenario
+      continue;
+    }
+    const auto& [c, v] = it->second;
+    if (!v) {
+      row.push_back(c->status == "ok" ? textCell("–") : textCell(c->status));
+      continue;
+    }
+    const double b = badness(*v, *best, *worst);
+    char score[16];
+    std::snprintf(score, sizeof score, "%.2f", b);
+    Cell cell = linkCell(formatValue(*v), mdPrefix + "#" + scenarioRowId(c->id), htmlPrefix + "#" + scenarioRowId(c->id));
+    cell.md = formatValue(*v) + " [" + score + "]";
+    cell.tdAttrs =
+        badnessStyle(b) + " title=\"" + htmlEscape(c->label) + ": " + score + "\" data-badness=\"" + score + "\"";
+    row.push_back(cell);
+  }
+  return row;
+}
+
+Table scenarioGrid(const ReportRun& run, const std::string& metric) {
+  const std::vector<std::string> columns = gridColumns({&run});
+  Table t{{"scenario"}, {}, {false}};
+  for (auto& col : columns) {
+    t.header.push_back(col);
+    t.numeric.push_back(true);
+  }
+  for (const std::string& scenario : run.scenarios) {
+    std::vector<const ReportCase*> cases;
+    for (const ReportCase& c : run.cases)
+      if (c.scenario == scenario) cases.push_back(&c);
+    std::vector<Cell> row{textCell(scenario)};
+    for (Cell& cell : gridCells(cases, columns, metric, "", "")) row.push_back(std::move(cell));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
 Table scenarioTable(const ReportRun& run, const std::string& metric, const std::string& runHref) {
-  // "triangles" is the per-frame clip_primitives counter (primitives that reached clipping).
-  const std::string key = metric == "triangles" ? "clip_primitives" : metric;
-  const bool lowerIsWorse = metric == "img_psnr_db";
   Table t{{"scheme", "parameters", "path / terrain", metric + " mean", metric + " worst", "worst frame", "images"},
           {},
           {false, false, false, true, true, true, false}};
   for (const ReportCase& c : run.cases) {
     if (c.status != "ok") continue;
-    double sum = 0;
-    int n = 0, worstFrame = -1;
-    std::optional<double> worst;
-    for (const auto& f : c.frames) {
-      auto v = frameValue(f, key);
-      if (!v) continue;
-      sum += *v, ++n;
-      if (!worst || (lowerIsWorse ? *v < *worst : *v > *worst)) {
-        worst = v;
-        worstFrame = f.value("frame", -1);
-      }
-    }
+    const CaseMetric m = caseMetric(c, metric);
     std::vector<Cell> links;
     auto imgs = run.images.find(c.id);
-    if (imgs != run.images.end() && imgs->second.count(worstFrame))
-      for (auto& [mode, file] : imgs->second.at(worstFrame))
-        links.push_back(linkCell(mode, runHref + "/" + file, "#" + imageAnchor(c.id, worstFrame)));
-    t.rows.push_back({textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
-                      textCell(formatValue(n ? std::optional<double>(sum / n) : std::nullopt)),
-                      textCell(formatValue(worst)), textCell(worstFrame >= 0 ? std::to_string(worstFrame) : "–"),
-                      links.empty() ? textCell(worstFrame >= 0 ? "(no image of that frame)" : "–")
-                                    : joinCells(links, ", ", ", ")});
+    if (imgs != run.images.end() && imgs->second.count(m.worstFrame))
+      for (auto& [mode, file] : imgs->second.at(m.worstFrame))
+        links.push_back(linkCell(mode, runHref + "/" + file, "#" + imageAnchor(c.id, m.worstFrame)));
+    Cell images = links.empty() ? textCell("–") : joinCells(links, ", ", ", ");
+    if (links.empty() && m.worstFrame >= 0) images = missingImageCell(c.id, m.worstFrame);
+    t.rows.push_back({schemeCell(run, c.scheme), textCell(c.paramsLabel), textCell(c.scenario), textCell(formatValue(m.mean)),
+                      textCell(formatValue(m.worst)), textCell(m.worstFrame >= 0 ? std::to_string(m.worstFrame) : "–"),
+                      images});
+    t.rowIds.push_back(scenarioRowId(c.id));
   }
   return t;
 }
