@@ -34,6 +34,7 @@ table.scenario tr:target { outline: 3px solid #f0b400; }
 #zoom { position: fixed; inset: 0; background: rgba(0,0,0,0.85); display: flex; align-items: center;
   justify-content: center; z-index: 10; cursor: zoom-out; }
 #zoom img { max-width: 96vw; max-height: 92vh; image-rendering: pixelated; width: auto; }
+span.scheme { white-space: nowrap; }
 span.scheme-dot { display: inline-block; width: 10px; height: 10px; border-radius: 50%; margin-right: 4px; }
 </style>
 )";
@@ -87,7 +88,8 @@ std::string pageSchemeColour(const ReportRun& run, const std::string& scheme) {
 
 Cell schemeCell(const ReportRun& run, const std::string& scheme) {
   Cell c = textCell(scheme);
-  c.html = "<span class=\"scheme-dot\" style=\"background:" + pageSchemeColour(run, scheme) + "\"></span>" + c.html;
+  c.html = "<span class=\"scheme\"><span class=\"scheme-dot\" style=\"background:" + pageSchemeColour(run, scheme) +
+           "\"></span>" + c.html + "</span>";
   return c;
 }
 

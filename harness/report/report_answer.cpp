@@ -13,7 +13,7 @@ struct Point {
 };
 
 std::string describe(const Point& p) {
-  std::string s = p.c->label + " (case " + p.c->id + "): " + formatValue(p.gpu) + " ms median GPU time at " +
+  std::string s = p.c->label + " (case " + p.c->id + "): " + formatValue(p.gpu) + " ms median GPU time, " +
                   formatValue(p.err) + " px mean error";
   if (p.tris) s += ", " + formatValue(*p.tris) + " triangles";
   return s;
@@ -44,15 +44,25 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
   const std::string n = std::to_string(points.size()) + " case" + (points.size() == 1 ? "" : "s");
   const Point* fast = best(points, [&](const Point& p) { return p.err <= errCap; }, [](const Point& p) { return p.gpu; });
   const Point* exact = best(points, [&](const Point& p) { return p.gpu <= gpuCap; }, [](const Point& p) { return p.err; });
-  std::string s = lead + "at a mean screen-space error of at most " + formatValue(errCap) +
-                  " px (the median over the " + n + " with an error pass), the fastest is " + describe(*fast) +
-                  ". Within a GPU time of " + formatValue(gpuCap) + " ms (the median), the most accurate is " +
-                  describe(*exact) + ".";
+  // A case named before is not described twice.
+  std::vector<const Point*> named;
+  auto name = [&](const Point* p) {
+    if (std::find(named.begin(), named.end(), p) != named.end()) return p->c->label + " again";
+    named.push_back(p);
+    return describe(*p);
+  };
+  // Named in reading order (the operands of + are unsequenced: one statement per name).
+  std::string s = lead + n + " with an error pass. Fastest at a mean screen-space error of at most " +
+                  formatValue(errCap) + " px (the median error): ";
+  s += name(fast);
+  s += ". Most accurate within " + formatValue(gpuCap) + " ms of GPU time (the median): ";
+  s += name(exact) + ".";
   if (tris.size() == points.size()) {
     const double triCap = medianOf(tris);
     const Point* lean = best(points, [&](const Point& p) { return *p.tris <= triCap; }, [](const Point& p) { return p.err; });
-    s += " Within " + formatValue(triCap) + " triangles (the median, a budget that does not depend on the device), " +
-         "the most accurate is " + describe(*lean) + ".";
+    s += " Most accurate within " + formatValue(triCap) +
+         " triangles (the median; triangle counts do not depend on the device): ";
+    s += name(lean) + ".";
   }
   if (timedOnly) s += " Not counted: " + std::to_string(timedOnly) + " finished case(s) without an error pass.";
   return s;
