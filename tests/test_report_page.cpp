@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "metrics/cracks.h"
 #include "error.h"
@@ -280,4 +281,37 @@ TEST(ReportScenario, SweepFolderGetsOneSummaryGridOverItsScenarioRuns) {
         writeReport(bad);
       },
       InputError);
+}
+
+TEST(ReportScenario, DifferenceScenariosScoreEachRowAgainstTheControlRow) {
+  ReportRun run;
+  run.name = "scenario-origin";
+  run.context = {{"config", {{"description", "Far. Shows in the difference from the at-origin case: err_mean_px."}}}};
+  run.scenarios = {"p", "p-at9"};
+  // Scheme u: 1 at the origin, 4 far (+3); scheme s: 2 and 2.5 (+0.5).
+  const std::vector<std::tuple<std::string, std::string, double>> values{
+      {"u", "p", 1}, {"s", "p", 2}, {"u", "p-at9", 4}, {"s", "p-at9", 2.5}};
+  for (auto& [label, scenario, v] : values) {
+    ReportCase c;
+    c.id = label + "_" + scenario;
+    c.label = c.scheme = label;
+    c.scenario = scenario;
+    c.status = "ok";
+    c.frames = json::array({{{"frame", 0}, {"err_mean_px", v}}});
+    run.cases.push_back(c);
+  }
+  EXPECT_EQ(controlScenario(run), "p");
+  auto rows = gridRows(run, {"u", "s"}, "err_mean_px", "", "");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].first, "p (control)");
+  EXPECT_EQ(rows[0].second[0].md, "[1](#scn-u_p)");  // plain value, no score, no colour
+  EXPECT_EQ(rows[0].second[0].tdAttrs, "");
+  EXPECT_EQ(rows[1].first, "p-at9 (difference)");
+  EXPECT_EQ(rows[1].second[0].md, "+3 [1.00]");
+  EXPECT_EQ(rows[1].second[1].md, "+0.5 [0.00]");
+  run.context["config"]["description"] = "Near. Shows in err_mean_px.";  // no control: plain values
+  EXPECT_EQ(controlScenario(run), "");
+  rows = gridRows(run, {"u", "s"}, "err_mean_px", "", "");
+  EXPECT_EQ(rows[1].second[0].md, "4 [1.00]");
+  EXPECT_EQ(rows[1].second[1].md, "2.5 [0.00]");
 }

@@ -73,17 +73,13 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
     const bool hasReport = !ec && fs::is_regular_file(runReport / "report.html");
     if (!hasReport)
       result.notes.push_back(run->dir + ": no report.html (run `lodbench report " + run->dir + "`): grid links dangle");
-    for (const std::string& scenario : run->scenarios) {
-      std::vector<const ReportCase*> cases;
-      for (const ReportCase& c : run->cases)
-        if (c.scenario == scenario) cases.push_back(&c);
+    for (auto& [scenario, cells] : gridRows(*run, columns, metric, rel + "/report.md", rel + "/report.html")) {
       const std::string label = name + (run->scenarios.size() > 1 ? " / " + scenario : "");
       std::vector<Cell> row{linkCell(label, rel + "/report.md", "#about-" + name), codeCell(metric.empty() ? "–" : metric)};
       if (metric.empty())
         for (size_t i = 0; i < columns.size(); ++i) row.push_back(textCell(i ? "" : "(no metric named)"));
       else
-        for (Cell& cell : gridCells(cases, columns, metric, rel + "/report.md", rel + "/report.html"))
-          row.push_back(std::move(cell));
+        for (Cell& cell : cells) row.push_back(std::move(cell));
       grid.rows.push_back(std::move(row));
     }
     mdList += "- **" + name + "** ([report](" + rel + "/report.md)): " + description + "\n";

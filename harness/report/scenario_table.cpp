@@ -88,7 +88,9 @@ std::string scenarioGridRule(const std::string& metric) {
          " over its measured frames. Colour, per scenario row: 0 (white) = the best case on that scenario (" +
          (higherIsBetter(metric) ? "highest" : "lowest") +
          "), 1 (dark red) = the worst, linear in between: (value - best) / (worst - best); the Markdown shows this "
-         "score in brackets. A row where every case is equal stays white. Click a cell for its row below.";
+         "score in brackets. A row where every case is equal stays white. Click a cell for its row below. Scenarios "
+         "read as a difference from a control (e.g. far-origin against the terrain at the origin) show the signed "
+         "difference from the control row's value for the same scheme and parameters, scored on its size.";
 }
 
 int scenarioWorstFrame(const ReportCase& c, const std::string& metric) {
@@ -107,17 +109,36 @@ std::vector<std::string> gridColumns(const std::vector<const ReportRun*>& runs) 
   return columns;
 }
 
-std::vector<Cell> gridCells(const std::vector<const ReportCase*>& cases, const std::vector<std::string>& columns,
-                            const std::string& metric, const std::string& mdPrefix, const std::string& htmlPrefix) {
+std::string controlScenario(const ReportRun& run) {
+  const std::string d = scenarioDescription(run);
+  if (d.find("difference from the") == std::string::npos || run.scenarios.size() < 2) return "";
+  for (const std::string& s : run.scenarios)
+    if (std::all_of(run.scenarios.begin(), run.scenarios.end(), [&](const std::string& o) { return o.rfind(s, 0) == 0; }))
+      return s;
+  return "";
+}
+
+namespace {
+
+// The cells of one scenario row. With `control` (label -> the control row's mean), a cell holds the
+// signed difference from the control and is scored on its size; the control row itself is plain.
+std::vector<Cell> rowCells(const std::vector<const ReportCase*>& cases, const std::vector<std::string>& columns,
+                           const std::string& metric, const std::string& mdPrefix, const std::string& htmlPrefix,
+                           const std::map<std::string, double>* control, bool isControl) {
   std::map<std::string, std::pair<const ReportCase*, std::optional<double>>> byLabel;
   std::optional<double> best, worst;
-  const bool up = higherIsBetter(metric);
+  const bool up = higherIsBetter(metric) && !control;
   for (const ReportCase* c : cases) {
     std::optional<double> v = c->status == "ok" ? caseMetric(*c, metric).mean : std::nullopt;
+    if (v && control && !isControl) {
+      auto ctl = control->find(c->label);
+      v = ctl == control->end() ? std::nullopt : std::optional<double>(*v - ctl->second);
+    }
     byLabel[c->label] = {c, v};
     if (!v) continue;
-    if (!best || (up ? *v > *best : *v < *best)) best = v;
-    if (!worst || (up ? *v < *worst : *v > *worst)) worst = v;
+    const double score = control ? std::fabs(*v) : *v;
+    if (!best || (up ? score > *best : score < *best)) best = score;
+    if (!worst || (up ? score < *worst : score > *worst)) worst = score;
   }
   std::vector<Cell> row;
   for (auto& col : columns) {
@@ -131,16 +152,46 @@ std::vector<Cell> gridCells(const std::vector<const ReportCase*>& cases, const s
       row.push_back(c->status == "ok" ? textCell("–") : textCell(c->status));
       continue;
     }
-    const double b = badness(*v, *best, *worst);
-    char score[16];
-    std::snprintf(score, sizeof score, "%.2f", b);
-    Cell cell = linkCell(formatValue(*v), mdPrefix + "#" + scenarioRowId(c->id), htmlPrefix + "#" + scenarioRowId(c->id));
-    cell.md = formatValue(*v) + " [" + score + "]";
-    cell.tdAttrs =
-        badnessStyle(b) + " title=\"" + htmlEscape(c->label) + ": " + score + "\" data-badness=\"" + score + "\"";
+    const std::string shown = (control && !isControl && *v > 0 ? "+" : "") + formatValue(*v);
+    Cell cell = linkCell(shown, mdPrefix + "#" + scenarioRowId(c->id), htmlPrefix + "#" + scenarioRowId(c->id));
+    if (!isControl) {
+      const double b = badness(control ? std::fabs(*v) : *v, *best, *worst);
+      char score[16];
+      std::snprintf(score, sizeof score, "%.2f", b);
+      cell.md = shown + " [" + score + "]";
+      cell.tdAttrs =
+          badnessStyle(b) + " title=\"" + htmlEscape(c->label) + ": " + score + "\" data-badness=\"" + score + "\"";
+    }
     row.push_back(cell);
   }
   return row;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun& run,
+                                                                const std::vector<std::string>& columns,
+                                                                const std::string& metric, const std::string& mdPrefix,
+                                                                const std::string& htmlPrefix) {
+  const std::string controlRow = controlScenario(run);
+  auto casesOf = [&](const std::string& scenario) {
+    std::vector<const ReportCase*> cases;
+    for (const ReportCase& c : run.cases)
+      if (c.scenario == scenario) cases.push_back(&c);
+    return cases;
+  };
+  std::map<std::string, double> control;
+  if (!controlRow.empty())
+    for (const ReportCase* c : casesOf(controlRow))
+      if (auto v = c->status == "ok" ? caseMetric(*c, metric).mean : std::nullopt) control[c->label] = *v;
+  std::vector<std::pair<std::string, std::vector<Cell>>> rows;
+  for (const std::string& scenario : run.scenarios) {
+    const bool isControl = !controlRow.empty() && scenario == controlRow;
+    rows.emplace_back(scenario + (isControl ? " (control)" : controlRow.empty() ? "" : " (difference)"),
+                      rowCells(casesOf(scenario), columns, metric, mdPrefix, htmlPrefix,
+                               controlRow.empty() ? nullptr : &control, isControl));
+  }
+  return rows;
 }
 
 Table scenarioGrid(const ReportRun& run, const std::string& metric) {
@@ -150,12 +201,9 @@ Table scenarioGrid(const ReportRun& run, const std::string& metric) {
     t.header.push_back(col);
     t.numeric.push_back(true);
   }
-  for (const std::string& scenario : run.scenarios) {
-    std::vector<const ReportCase*> cases;
-    for (const ReportCase& c : run.cases)
-      if (c.scenario == scenario) cases.push_back(&c);
-    std::vector<Cell> row{textCell(scenario)};
-    for (Cell& cell : gridCells(cases, columns, metric, "", "")) row.push_back(std::move(cell));
+  for (auto& [label, cells] : gridRows(run, columns, metric, "", "")) {
+    std::vector<Cell> row{textCell(label)};
+    for (Cell& cell : cells) row.push_back(std::move(cell));
     t.rows.push_back(std::move(row));
   }
   return t;

@@ -4,6 +4,7 @@
 // summary grid of scenarios x schemes coloured by how badly each fails, and one row per case with
 // that metric, its worst frame and a link to the frame's images.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "report/run_data.h"
@@ -28,11 +29,16 @@ std::string scenarioGridRule(const std::string& metric);
 // of scenarioTable (id scenarioRowId). A case without the metric shows "–" and is not coloured.
 Table scenarioGrid(const ReportRun& run, const std::string& metric);
 // The grid's parts, for grids over several runs (scenario_summary.h): the columns (scheme and
-// parameters, first appearance first), and one row's cells for `cases` (one scenario); links go to
+// parameters, first appearance first), and one run's rows (label, cells); links go to
 // <prefix>#scn-<case id> (prefix "" in the same page).
 std::vector<std::string> gridColumns(const std::vector<const ReportRun*>& runs);
-std::vector<Cell> gridCells(const std::vector<const ReportCase*>& cases, const std::vector<std::string>& columns,
-                            const std::string& metric, const std::string& mdPrefix, const std::string& htmlPrefix);
+std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun& run,
+                                                                const std::vector<std::string>& columns,
+                                                                const std::string& metric, const std::string& mdPrefix,
+                                                                const std::string& htmlPrefix);
+// The control row of a scenario whose description says it shows in "the difference from the ..."
+// case (far-origin): the scenario whose label begins every other one's; "" for other scenarios.
+std::string controlScenario(const ReportRun& run);
 // Per case: mean and max of `metric` over the measured frames, the worst frame, links to its images.
 Table scenarioTable(const ReportRun& run, const std::string& metric, const std::string& runHref);
 std::string scenarioRowId(const std::string& caseId);
