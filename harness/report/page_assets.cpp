@@ -33,7 +33,7 @@ table.scenario tr:target { outline: 3px solid #f0b400; }
 .no-image { color: #b00020; }
 #zoom { position: fixed; inset: 0; background: rgba(0,0,0,0.85); display: flex; align-items: center;
   justify-content: center; z-index: 10; cursor: zoom-out; }
-#zoom img { max-width: 96vw; max-height: 92vh; image-rendering: pixelated; width: auto; }
+#zoom img { width: 96vw; height: 92vh; object-fit: contain; image-rendering: pixelated; }
 span.scheme { white-space: nowrap; }
 span.scheme-dot { display: inline-block; width: 10px; height: 10px; border-radius: 50%; margin-right: 4px; }
 </style>

@@ -88,7 +88,7 @@ std::string scenarioGridRule(const std::string& metric) {
          " over its measured frames. Colour, per scenario row: 0 (white) = the best case on that scenario (" +
          (higherIsBetter(metric) ? "highest" : "lowest") +
          "), 1 (dark red) = the worst, linear in between: (value - best) / (worst - best); the Markdown shows this "
-         "score in brackets. A row where every case is equal stays white. Click a cell for its row below. Scenarios "
+         "score in brackets. A row where every case is equal stays white. A cell links to the case's row in the scenario's table. Scenarios "
          "read as a difference from a control (e.g. far-origin against the terrain at the origin) show the signed "
          "difference from the control row's value for the same scheme and parameters, scored on its size.";
 }

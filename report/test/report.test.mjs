@@ -103,7 +103,10 @@ async function inspect(reportDir, screenshot) {
     }, manifest.charts.map((c) => c.id));
     problems.push(...found);
     if (screenshot) {
-      await page.screenshot({path: screenshot, fullPage: true});
+      // Whole page when Chromium can capture it in one go; else the first screen (scenario runs with
+      // hundreds of strips are 200,000 px tall).
+      const tall = await page.evaluate(() => document.documentElement.scrollHeight);
+      await page.screenshot({path: screenshot, fullPage: tall <= 16384});
       console.log(`screenshot: ${screenshot}`);
     }
   } finally {
