@@ -155,6 +155,18 @@ test('the fixture report draws every chart and image, and names exactly its wors
   assert.deepEqual(problems.filter((p) => !p.startsWith('worst frame missing')), []);
   for (const t of ['context', 'stability sticky', 'problems', 'cases sticky'])
     assert.ok((await tables(dir)).includes(t), `${t} table`);
+  // Click to enlarge: the viewer shows the same image larger than its strip, Escape closes it.
+  const page = await browser.newPage();
+  await page.goto(pathToFileURL(path.join(dir, 'report.html')).href);
+  const shot = page.locator('.shot img').first();
+  const small = (await shot.boundingBox()).width;
+  await shot.click();
+  const big = await page.locator('#zoom img').boundingBox();
+  assert.ok(big.width > small, `enlarged ${big.width} px > ${small} px`);
+  assert.equal(await page.locator('#zoom img').getAttribute('src'), await shot.getAttribute('src'));
+  await page.keyboard.press('Escape');
+  assert.equal(await page.locator('#zoom').count(), 0);
+  await page.close();
 });
 
 test('a planted missing image fails the check', async () => {
