@@ -12,8 +12,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "metrics/cracks.h"
 #include "error.h"
+#include "metrics/cracks.h"
 #include "report/report.h"
 #include "report/report_answer.h"
 #include "report/report_images.h"
@@ -92,9 +92,10 @@ TEST(ReportAnswer, NamesTheFastestCaseWithinTheMedianErrorAndTheMostAccurateWith
     }
     const std::string& a = answer[i];
     EXPECT_EQ(a.rfind(run.scenarios[i] + ": ", 0), 0u) << a;
-    EXPECT_NE(a.find(std::to_string(cs.size()) + " cases with an error pass. Fastest at a mean screen-space error of "
-                     "at most " + formatValue(errCap) + " px (the median error): " + fast->label + " (case " + fast->id +
-                     "): "),
+    EXPECT_NE(a.find(std::to_string(cs.size()) +
+                     " cases with an error pass. Fastest at a mean screen-space error of "
+                     "at most " +
+                     formatValue(errCap) + " px (the median error): " + fast->label + " (case " + fast->id + "): "),
               std::string::npos)
         << a;
     const std::string exactName = exact == fast ? exact->label + " again" : exact->label + " (case " + exact->id + ")";
@@ -142,7 +143,8 @@ TEST(ReportPage, TablesScrollInTheirBoxWithNotesLinkingTheFormatCopy) {
   EXPECT_EQ(count("<aside class=\"howto\">"), 2u);
   EXPECT_EQ(count("<a href=\"results-format.md\">"), 2u);
   EXPECT_NE(html.find("it beat errbound at equal error: a finding, not a bug"), std::string::npos);
-  EXPECT_EQ(readText(run / "report/results-format.md"), readText(fs::path(LODBENCH_SOURCE_DIR) / "docs/results-format.md"));
+  EXPECT_EQ(readText(run / "report/results-format.md"),
+            readText(fs::path(LODBENCH_SOURCE_DIR) / "docs/results-format.md"));
   EXPECT_NE(html.find("<p class=\"answer\">"), std::string::npos);
   EXPECT_LT(html.find("<p class=\"answer\">"), html.find("<h2 id=\"context\">"));  // the answer comes first
 }
@@ -225,8 +227,7 @@ TEST(ReportScenario, GridScoresEachScenarioFromItsBestToItsWorstCase) {
     const std::string row = md.substr(at + 1, md.find('\n', at + 1) - at - 1);
     std::map<std::string, int> scores;
     const std::regex score(R"(\[(\d\.\d\d)\])");
-    for (auto it = std::sregex_iterator(row.begin(), row.end(), score);
-         it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(row.begin(), row.end(), score); it != std::sregex_iterator(); ++it)
       scores[(*it)[1]]++;
     EXPECT_EQ(scores["0.00"], 1) << row;
     EXPECT_EQ(scores["1.00"], 1) << row;

@@ -42,8 +42,10 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
   }
   const double errCap = medianOf(errs), gpuCap = medianOf(gpus);
   const std::string n = std::to_string(points.size()) + " case" + (points.size() == 1 ? "" : "s");
-  const Point* fast = best(points, [&](const Point& p) { return p.err <= errCap; }, [](const Point& p) { return p.gpu; });
-  const Point* exact = best(points, [&](const Point& p) { return p.gpu <= gpuCap; }, [](const Point& p) { return p.err; });
+  const Point* fast = best(
+      points, [&](const Point& p) { return p.err <= errCap; }, [](const Point& p) { return p.gpu; });
+  const Point* exact = best(
+      points, [&](const Point& p) { return p.gpu <= gpuCap; }, [](const Point& p) { return p.err; });
   // A case named before is not described twice.
   std::vector<const Point*> named;
   auto name = [&](const Point* p) {
@@ -59,7 +61,8 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
   s += name(exact) + ".";
   if (tris.size() == points.size()) {
     const double triCap = medianOf(tris);
-    const Point* lean = best(points, [&](const Point& p) { return *p.tris <= triCap; }, [](const Point& p) { return p.err; });
+    const Point* lean = best(
+        points, [&](const Point& p) { return *p.tris <= triCap; }, [](const Point& p) { return p.err; });
     s += " Most accurate within " + formatValue(triCap) +
          " triangles (the median; triangle counts do not depend on the device): ";
     s += name(lean) + ".";
@@ -70,15 +73,17 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
 
 std::string deviceCaveat(const ReportRun& run) {
   auto it = run.context.find("device");
-  const std::string device = it != run.context.end() && it->is_string() ? it->get<std::string>() : "an unrecorded device";
+  const std::string device =
+      it != run.context.end() && it->is_string() ? it->get<std::string>() : "an unrecorded device";
   std::string s = "Caveat: the GPU times come from " + device + " and rank the schemes on that device only";
   std::string lower = device;
   std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
   if (lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
       lower.find("swiftshader") != std::string::npos)
     s += " (a software rasterizer on the CPU: its costs do not predict a hardware GPU's)";
-  return s + "; errors and triangle counts do not depend on the device. Thresholds are the medians of this run's "
-             "cases, so they move with the sweep; the charts below show every case.";
+  return s +
+         "; errors and triangle counts do not depend on the device. Thresholds are the medians of this run's "
+         "cases, so they move with the sweep; the charts below show every case.";
 }
 
 }  // namespace

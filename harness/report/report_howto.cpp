@@ -46,7 +46,8 @@ const Note kNotes[] = {
 }  // namespace
 
 std::pair<std::string, std::string> howToRead(const std::vector<std::string>& keys) {
-  std::string md = "How to read this:", html = "<aside class=\"howto\"><div class=\"howto-title\">How to read this</div>";
+  std::string md = "How to read this:",
+              html = "<aside class=\"howto\"><div class=\"howto-title\">How to read this</div>";
   for (const std::string& key : keys) {
     const Note* note = nullptr;
     for (const Note& n : kNotes)

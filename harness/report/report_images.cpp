@@ -36,7 +36,8 @@ std::string swatch(const std::string& colour, const std::string& text) {
 
 std::string heatLegend(bool lit) {
   std::string g;
-  for (int i = 0; i <= 12; ++i) g += (i ? "," : "") + heatColour(std::exp2(i / 2.0)) + " " + std::to_string(i * 100 / 12) + "%";
+  for (int i = 0; i <= 12; ++i)
+    g += (i ? "," : "") + heatColour(std::exp2(i / 2.0)) + " " + std::to_string(i * 100 / 12) + "%";
   return bar(g, {"1", "2", "4", "8", "16", "32", "64"}, "tessellation level (log2)") +
          (lit ? "<span>(heat map: times lighting, 25-100%)</span>" : "") + "</div>";
 }
@@ -61,7 +62,9 @@ std::string crackLegend() {
 
 std::string heatColour(double level) {
   const double t = std::clamp(std::log2(std::max(level, 1.0)) / 6.0, 0.0, 1.0);
-  auto ch = [&](double centre) { return int(std::lround(255 * std::clamp(1.5 - std::fabs(4.0 * t - centre), 0.0, 1.0))); };
+  auto ch = [&](double centre) {
+    return int(std::lround(255 * std::clamp(1.5 - std::fabs(4.0 * t - centre), 0.0, 1.0)));
+  };
   return hex(ch(3.0), ch(2.0), ch(1.0));
 }
 

@@ -46,13 +46,15 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
   for (auto& d : dirs) {
     auto run = std::make_unique<ReportRun>(loadReportRun(d.string()));
     if (scenarioDescription(*run).empty()) {
-      result.notes.push_back(d.string() + ": not a scenario run (config name does not start with \"scenario-\"), "
-                                          "left out of the summary");
+      result.notes.push_back(d.string() +
+                             ": not a scenario run (config name does not start with \"scenario-\"), "
+                             "left out of the summary");
       continue;
     }
     runs.push_back(std::move(run));
   }
-  if (runs.empty()) throw InputError(options.runDir + ": no scenario runs in this folder (scripts/run-scenarios.sh OUT)");
+  if (runs.empty())
+    throw InputError(options.runDir + ": no scenario runs in this folder (scripts/run-scenarios.sh OUT)");
 
   std::vector<const ReportRun*> all;
   for (auto& r : runs) all.push_back(r.get());
@@ -75,7 +77,8 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
       result.notes.push_back(run->dir + ": no report.html (run `lodbench report " + run->dir + "`): grid links dangle");
     for (auto& [scenario, cells] : gridRows(*run, columns, metric, rel + "/report.md", rel + "/report.html")) {
       const std::string label = name + (run->scenarios.size() > 1 ? " / " + scenario : "");
-      std::vector<Cell> row{linkCell(label, rel + "/report.md", "#about-" + name), codeCell(metric.empty() ? "–" : metric)};
+      std::vector<Cell> row{linkCell(label, rel + "/report.md", "#about-" + name),
+                            codeCell(metric.empty() ? "–" : metric)};
       if (metric.empty())
         for (size_t i = 0; i < columns.size(); ++i) row.push_back(textCell(i ? "" : "(no metric named)"));
       else
@@ -87,8 +90,9 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
             htmlEscape(rel + "/report.html") + "\">report</a>): " + htmlEscape(description) + "</li>\n";
   }
   const std::string title = "lodbench scenarios: " + fs::absolute(root).lexically_normal().filename().string();
-  const std::string intro = std::to_string(all.size()) + " scenario runs in " + options.runDir +
-                            "; report written " + isoTimeUtc() + ". Each scenario provokes one failure a seed "
+  const std::string intro = std::to_string(all.size()) + " scenario runs in " + options.runDir + "; report written " +
+                            isoTimeUtc() +
+                            ". Each scenario provokes one failure a seed "
                             "predicts and names the metric that shows it.";
   const std::string rule = scenarioGridRule("the scenario's metric") +
                            " Columns are scheme and parameters; an empty cell: not run on that scenario.";
@@ -101,7 +105,9 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
   fs::create_directories(out);
   writeFileAtomic((out / "report.md").string(), md);
   writeFileAtomic((out / "body.html").string(), html);
-  nlohmann::json manifest = {{"title", title}, {"run_dir", options.runDir}, {"charts", nlohmann::json::array()},
+  nlohmann::json manifest = {{"title", title},
+                             {"run_dir", options.runDir},
+                             {"charts", nlohmann::json::array()},
                              {"omitted", nlohmann::json::array()}};
   writeFileAtomic((out / "manifest.json").string(), manifest.dump(2) + "\n");
   return result;
