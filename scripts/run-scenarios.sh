@@ -45,5 +45,8 @@ for cfg in configs/scenarios/*.json; do
   "$bin" report "$out/$name" >/dev/null || rc=1
   echo "run-scenarios: $name in $(($(date +%s) - t0)) s -> $out/$name/report/report.html"
 done
+# One page over every scenario run under OUT: the grid of scenarios x schemes (issue 12).
+"$bin" report "$out" >/dev/null || rc=1
+echo "run-scenarios: summary -> $out/report/report.html"
 echo "run-scenarios: done in $(($(date +%s) - start)) s (exit $rc)"
 exit $rc

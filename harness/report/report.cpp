@@ -9,7 +9,10 @@
 #include <set>
 
 #include "report/charts.h"
+#include "report/report_howto.h"
 #include "report/report_page.h"
+#include "report/scenario_summary.h"
+#include "report/scenario_table.h"
 #include "report/run_data.h"
 #include "sweep/results.h"
 
@@ -50,6 +53,8 @@ std::string runHrefFrom(const fs::path& out, const std::string& runDir) {
 }  // namespace
 
 ReportOutput writeReport(const ReportOptions& options) {
+  // The folder of a scenario sweep (scripts/run-scenarios.sh OUT): one summary over its runs.
+  if (isRunCollection(options.runDir)) return writeScenarioSummary(options);
   ReportRun run = loadReportRun(options.runDir);
   fs::path out = options.outDir.empty() ? fs::path(options.runDir) / "report" : fs::path(options.outDir);
   fs::create_directories(out / "charts");
@@ -87,12 +92,21 @@ ReportOutput writeReport(const ReportOptions& options) {
 
   std::string runHref = runHrefFrom(out, options.runDir);
   std::vector<std::string> pageNotes = run.notes;
-  std::vector<Strip> strips = imageStrips(run, options.frames, pageNotes);
+  std::vector<Strip> strips =
+      imageStrips(run, options.frames, scenarioMetric(scenarioDescription(run)), pageNotes);
   for (size_t i = run.notes.size(); i < pageNotes.size(); ++i) result.notes.push_back(pageNotes[i]);
   Page page = buildPage(run, charts, strips, runHref, pageNotes);
   writeFileAtomic((out / "report.md").string(), page.markdown);
   writeFileAtomic((out / "body.html").string(), page.html);
   writeFileAtomic((out / "manifest.json").string(), manifest.dump(2) + "\n");
+  // The metric notes link here: a copy of the definitions, so the link works wherever the folder goes.
+  const fs::path doc = fs::path(LODBENCH_SOURCE_DIR) / "docs/results-format.md";
+  std::error_code ec;
+  if (fs::is_regular_file(doc, ec))
+    fs::copy_file(doc, out / kFormatDocName, fs::copy_options::overwrite_existing, ec);
+  if (ec || !fs::is_regular_file(out / kFormatDocName))
+    result.notes.push_back(std::string(kFormatDocName) + " not copied from " + doc.string() +
+                           (ec ? ": " + ec.message() : ": missing") + "; the metric notes' links will not resolve.");
   return result;
 }
 

@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <set>
 
+#include "report/page_assets.h"
+#include "report/report_answer.h"
+#include "report/report_howto.h"
 #include "report/report_tables.h"
 #include "report/scenario_table.h"
 #include "report/table.h"
@@ -12,9 +15,6 @@
 namespace lb {
 
 namespace {
-
-// Strip order: what the frame looks like, then how it was tessellated, then what went wrong.
-const char* const kModeOrder[] = {"shaded", "wireframe", "heatmap", "error", "cracks"};
 
 struct Section {
   const char* id;
@@ -42,9 +42,15 @@ class Writer {
     md_ += (cls ? "> " : "") + text + "\n\n";
     html_ += std::string("<p") + (cls ? std::string(" class=\"") + cls + "\"" : "") + ">" + htmlEscape(text) + "</p>\n";
   }
-  void table(const Table& t, const char* cls) {
+  // Every table scrolls inside its own box (the page stays within the window); wide ones pin
+  // their first column so a row stays readable while scrolling.
+  void table(const Table& t, const std::string& cls, bool sticky = false) {
     md_ += toMarkdown(t) + "\n";
-    html_ += toHtml(t, cls);
+    html_ += "<div class=\"table-wrap\">" + toHtml(t, cls + (sticky ? " sticky" : "")) + "</div>\n";
+  }
+  void howto(const std::vector<std::string>& keys) {
+    auto [md, html] = howToRead(keys);
+    raw(md, html);
   }
   void raw(const std::string& md, const std::string& html) {
     md_ += md;
@@ -73,64 +79,36 @@ void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts)
   }
 }
 
-void stripSection(Writer& w, const std::vector<Strip>& strips, const std::string& runHref) {
-  w.heading(2, "Images", "images");
-  if (strips.empty()) {
-    w.para("No images: the run wrote none (config `images`), or none for the chosen frames.", "note");
+// Scenario runs (configs/scenarios/, issue 12): what failure to look for, a grid of how badly each
+// scheme shows it, and each case's figure for it with its worst frame.
+void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref) {
+  const std::string d = scenarioDescription(run);
+  if (d.empty()) return;
+  w.heading(2, "Scenario", "scenario");
+  w.para("What to look for: " + d);
+  const std::string metric = scenarioMetric(d);
+  if (metric.empty()) {
+    w.para("The description names no per-frame metric after \"Shows in\", so there is no grid.", "note");
     return;
   }
-  w.para("Chosen frames and each case's worst frames (cracks, popping, error), in the modes the run rendered.");
-  for (auto& s : strips) {
-    std::string caption = s.c->label + ", " + s.c->scenario + ", frame " + std::to_string(s.frame);
-    std::string worst = worstOf(*s.c, s.frame);
-    if (!worst.empty()) caption += " (worst frame: " + worst + ")";
-    std::string md = "**" + caption + "**\n\n", html;
-    html += "<figure class=\"strip\" id=\"" + imageAnchor(s.c->id, s.frame) + "\"><figcaption>" + htmlEscape(caption) +
-            "</figcaption><div class=\"shots\">";
-    for (auto& [mode, file] : s.images) {
-      md += "![" + mode + "](" + runHref + "/" + file + ") ";
-      html += "<div class=\"shot\"><img src=\"" + htmlEscape(runHref + "/" + file) + "\" alt=\"" + htmlEscape(mode) +
-              "\"><span>" + htmlEscape(mode) + "</span></div>";
-    }
-    w.raw(md + "\n\n", html + "</div></figure>\n");
-  }
+  w.para("Summary grid, " + metric + " by scenario and scheme. " + scenarioGridRule(metric));
+  w.table(scenarioGrid(run, metric), "grid", true);
+  w.para("One row per case: " + metric + " over its measured frames, the frame where it is worst, and that frame's "
+         "images.");
+  w.table(scenarioTable(run, metric, runHref), "scenario", true);
 }
 
 }  // namespace
 
-std::vector<Strip> imageStrips(const ReportRun& run, const std::vector<int>& frames, std::vector<std::string>& notes) {
-  std::vector<Strip> strips;
-  std::set<int> shown;
-  for (auto& c : run.cases) {
-    auto imgs = run.images.find(c.id);
-    if (imgs == run.images.end()) continue;
-    std::set<int> chosen;
-    for (auto& [frame, modes] : imgs->second)
-      if (frames.empty() || std::count(frames.begin(), frames.end(), frame)) chosen.insert(frame);
-    for (int f : worstFrames(c))
-      if (imgs->second.count(f)) chosen.insert(f);
-    for (int frame : chosen) {
-      Strip s{&c, frame, {}};
-      std::map<std::string, std::string> modes = imgs->second.at(frame);
-      for (const char* m : kModeOrder)
-        if (modes.count(m)) {
-          s.images.emplace_back(m, modes[m]);
-          modes.erase(m);
-        }
-      for (auto& [m, file] : modes) s.images.emplace_back(m, file);  // modes added after this report was written
-      strips.push_back(std::move(s));
-      shown.insert(frame);
-    }
-  }
-  for (int f : frames)
-    if (!shown.count(f)) notes.push_back("--frames " + std::to_string(f) + ": no case has images of this frame.");
-  return strips;
-}
-
 Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
                const std::string& runHref, const std::vector<std::string>& notes) {
   Writer w;
-  w.raw("# lodbench report: " + run.name + "\n\n", "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
+  w.raw("# lodbench report: " + run.name + "\n\n",
+        pageAssetsHtml() + "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
+  // The answer first (issue 14): what the run says, with its thresholds and caveat, then the evidence.
+  const std::vector<std::string> answer = openingAnswer(run);
+  for (size_t i = 0; i < answer.size(); ++i)
+    w.para(answer[i], i + 1 < answer.size() || answer.size() == 1 ? "answer" : "caveat");
   w.para("Run directory " + run.dir + ", " + std::to_string(run.cases.size()) + " cases; report written " +
          isoTimeUtc() + ".");
   for (auto& n : notes) w.para(n, "note");
@@ -151,13 +129,9 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
       "factors differ; pixels: background showing through the terrain), popping (mean and p99 absolute RGB "
       "difference, 0-255, between a frame rendered with the previous frame's LOD and with the live LOD), and the "
       "share of measured frames where a visible patch hit factor 64. Links go to the worst frame's images.");
-  w.table(stabilityTable(run, runHref), "stability");
-  if (const std::string d = scenarioDescription(run); !d.empty()) {
-    // Scenario runs (configs/scenarios/): what failure to look for, and each case's figure for it.
-    w.para("Scenario: " + d);
-    if (const std::string metric = scenarioMetric(d); !metric.empty())
-      w.table(scenarioTable(run, metric, runHref), "scenario");
-  }
+  w.howto({"cracks", "popping", "saturated", "surplus"});
+  w.table(stabilityTable(run, runHref), "stability", true);
+  scenarioSection(w, run, runHref);
 
   w.heading(2, "Failed and skipped cases", "problems");
   Table problems = problemTable(run);
@@ -191,14 +165,26 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   w.para(
       "Timing statistics over timed frames; error, image and stability metrics are means (cracks: maximum) over "
       "measured frames. – marks a metric the case does not have.");
-  w.table(cases, "cases");
+  std::vector<std::string> notesFor;
+  for (auto& [key, header] : std::vector<std::pair<std::string, std::string>>{{"gpu", "GPU ms median"},
+                                                                              {"triangles", "triangles median"},
+                                                                              {"error", "error mean px"},
+                                                                              {"psnr", "PSNR dB"},
+                                                                              {"ssim", "SSIM"},
+                                                                              {"cracks", "cracks px max"},
+                                                                              {"popping", "popping mean"},
+                                                                              {"surplus", "surplus"}})
+    if (std::count(cases.header.begin(), cases.header.end(), header)) notesFor.push_back(key);
+  w.howto(notesFor);
+  w.table(cases, "cases", true);
   if (!omitted.empty()) {
     std::string list;
     for (auto& o : omitted) list += (list.empty() ? "" : ", ") + o;
     w.para("Columns left out, no case has them: " + list + ".", "note");
   }
 
-  stripSection(w, strips, runHref);
+  auto [imagesMd, imagesHtml] = imageSection(run, strips, runHref);
+  w.raw(imagesMd, imagesHtml);
   return w.page();
 }
 

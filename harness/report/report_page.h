@@ -2,23 +2,13 @@
 // The report's text, in two renderings of one outline: report.md and the HTML body that
 // report/render.mjs wraps (with the chart libraries and embedded images) into report.html.
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "report/charts.h"
+#include "report/report_images.h"
 #include "report/run_data.h"
 
 namespace lb {
-
-// One row of the image strips: one case at one frame, its images in mode order.
-struct Strip {
-  const ReportCase* c = nullptr;
-  int frame = 0;
-  std::vector<std::pair<std::string, std::string>> images;  // mode, path relative to the run dir
-};
-
-// Strips for the chosen frames (empty: every frame with images) plus each case's worst frames.
-std::vector<Strip> imageStrips(const ReportRun& run, const std::vector<int>& frames, std::vector<std::string>& notes);
 
 struct Page {
   std::string markdown, html;

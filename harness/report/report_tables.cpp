@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "report/page_assets.h"
+
 namespace lb {
 
 using nlohmann::json;
@@ -89,7 +91,8 @@ Cell worstCell(const ReportRun& run, const std::vector<const ReportCase*>& cases
     const std::map<std::string, std::string>* modes = nullptr;
     if (imgs != run.images.end() && imgs->second.count(frame)) modes = &imgs->second.at(frame);
     if (!modes) {
-      parts.push_back(textCell(label + " (no image)"));
+      Cell missing = missingImageCell(c->id, frame);
+      parts.push_back({label + " " + missing.md, htmlEscape(label) + " " + missing.html});
       continue;
     }
     std::string file = modes->begin()->second;
@@ -107,6 +110,12 @@ Cell worstCell(const ReportRun& run, const std::vector<const ReportCase*>& cases
 
 std::string imageAnchor(const std::string& caseId, int frame) {
   return "img-" + caseId + "-f" + std::to_string(frame);
+}
+
+Cell missingImageCell(const std::string& caseId, int frame) {
+  const std::string text = "(no image of frame " + std::to_string(frame) + ")";
+  return {text, "<span class=\"no-image\" data-case=\"" + htmlEscape(caseId) + "\" data-frame=\"" +
+                    std::to_string(frame) + "\">" + htmlEscape(text) + "</span>"};
 }
 
 std::vector<int> worstFrames(const ReportCase& c) {
@@ -169,7 +178,7 @@ Table caseTable(const ReportRun& run, std::vector<std::string>& omitted) {
     t.numeric.push_back(true);
   }
   for (auto& c : run.cases) {
-    std::vector<Cell> row{codeCell(c.id), textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
+    std::vector<Cell> row{codeCell(c.id), schemeCell(run, c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
                           textCell(c.status)};
     for (auto* col : cols) row.push_back(textCell(formatValue(columnValue(c, *col))));
     t.rows.push_back(std::move(row));
@@ -216,7 +225,7 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
         surplus = formatValue(mean / n) + (*sLo < *sHi ? " (" + formatValue(*sLo) + "–" + formatValue(*sHi) + ")" : "");
       }
       t.rows.push_back(
-          {textCell(scheme), textCell(scenario),
+          {schemeCell(run, scheme), textCell(scenario),
            textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
            textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
            textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),

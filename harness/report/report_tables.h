@@ -19,6 +19,9 @@ Table problemTable(const ReportRun& run);
 
 // In-page anchor of one frame's image strip.
 std::string imageAnchor(const std::string& caseId, int frame);
+// A worst frame the report names but has no image of: the text, and in HTML a span.no-image with
+// data-case and data-frame that the browser test counts (report/test).
+Cell missingImageCell(const std::string& caseId, int frame);
 // Frames the stability table links to (worst cracks, popping, error), for the image strips.
 std::vector<int> worstFrames(const ReportCase& c);
 // What frame is the worst of for this case ("cracks, error"), or "".

@@ -86,10 +86,12 @@ std::string toHtml(const Table& t, const std::string& cssClass) {
   std::string s = "<table class=\"" + cssClass + "\">\n<thead><tr>";
   for (auto& h : t.header) s += "<th>" + htmlEscape(h) + "</th>";
   s += "</tr></thead>\n<tbody>\n";
-  for (auto& row : t.rows) {
-    s += "<tr>";
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    const auto& row = t.rows[r];
+    s += r < t.rowIds.size() && !t.rowIds[r].empty() ? "<tr id=\"" + htmlEscape(t.rowIds[r]) + "\">" : "<tr>";
     for (size_t i = 0; i < row.size(); ++i)
-      s += (isNumeric(t, i) ? "<td class=\"num\">" : "<td>") + row[i].html + "</td>";
+      s += std::string(isNumeric(t, i) ? "<td class=\"num\"" : "<td") + (row[i].tdAttrs.empty() ? "" : " ") +
+           row[i].tdAttrs + ">" + row[i].html + "</td>";
     s += "</tr>\n";
   }
   return s + "</tbody>\n</table>\n";

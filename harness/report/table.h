@@ -8,12 +8,14 @@ namespace lb {
 
 struct Cell {
   std::string md, html;
+  std::string tdAttrs;  // raw attributes of the HTML cell (e.g. a background), "" for none
 };
 
 struct Table {
   std::vector<std::string> header;
   std::vector<std::vector<Cell>> rows;
   std::vector<bool> numeric;  // right-aligned columns (optional, per header entry)
+  std::vector<std::string> rowIds;  // HTML id of each row (optional): link targets
 };
 
 std::string htmlEscape(const std::string& s);
