@@ -158,13 +158,13 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
           row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, errboundIn[s], shown > 1));
       rows.push_back({{"hconcat", row}});
     }
+    json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
+                                 "the scheme is both cheaper and more accurate)"});
+    if (!errboundIn.empty()) subtitle.push_back("dashed: errbound's sweep over max_error_px, the reference front");
     chart.spec = {{"$schema", kVegaLiteSchema},
                   {"title",
                    {{"text", cost.title},
-                    {"subtitle",
-                     json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
-                                  "the scheme is both cheaper and more accurate);",
-                                  "dashed: errbound's sweep over max_error_px, the reference front"})}}},
+                    {"subtitle", subtitle}}},
                   {"data", {{"url", "data/" + chart.dataName + ".json"}}},
                   {"vconcat", rows},
                   {"resolve", {{"scale", {{"color", "shared"}, {"shape", "shared"}}}}}};
