@@ -242,6 +242,8 @@ TEST(ReportCharts, SpeedChartsHaveFrontsErrboundReferenceAndFixedColours) {
   // Without errbound cases there is no reference layer (an empty one makes Vega warn).
   std::vector<Chart> plain = speedCharts(speedRun(false));
   EXPECT_TRUE(layersWith(plain[0].spec, [](const json& o) { return o["mark"].contains("strokeDash"); }).empty());
+  EXPECT_EQ(plain[0].spec["title"]["subtitle"].dump().find("dashed"), std::string::npos);
+  EXPECT_NE(charts[0].spec["title"]["subtitle"].dump().find("dashed: errbound"), std::string::npos);
 }
 
 TEST(ReportCharts, ScaleChartsOnlyWhereTheRunVariesThem) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "report/charts.h"
 #include "report/pareto.h"
@@ -97,7 +98,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     std::vector<std::string> unmeasured;
     std::map<std::string, std::vector<double>> costsOf;               // by scenario: one y axis per row
     std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
-    std::map<std::string, bool> errboundIn;
+    std::set<std::string> errboundIn;  // scenarios with errbound cases
     for (const ErrorKind& err : kErrors) {
       // Group cases by scheme and path: a front only compares settings of one scheme on one path.
       std::map<std::pair<std::string, std::string>, std::vector<const ReportCase*>> groups;
@@ -134,7 +135,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                                 {"sweep", sweep}});
           costsOf[c.scenario].push_back(costs[i]);
           errsOf[{c.scenario, err.label}].push_back(xs[i]);
-          if (errbound) errboundIn[c.scenario] = true;
+          if (errbound) errboundIn.insert(c.scenario);
         }
       }
     }
@@ -155,7 +156,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
       json row = json::array();
       for (const ErrorKind& err : kErrors)
         if (errsOf.count({s, err.label}))
-          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, errboundIn[s], shown > 1));
+          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, errboundIn.count(s) > 0, shown > 1));
       rows.push_back({{"hconcat", row}});
     }
     json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
