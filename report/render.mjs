@@ -3,8 +3,12 @@
 //   report.html  one self-contained page: Vega, Vega-Lite and vega-embed inlined, chart specs with
 //                their data inlined, images embedded as data: URIs; opens offline.
 //   svg/<id>.svg each chart drawn headless in Node (vega's View.toSVG), for papers.
+//   png/<id>.png the same SVG rasterized at 2x by Debian's chromium through playwright-core (vega's
+//                toCanvas would need node-canvas, a native module we do not install); without
+//                chromium or playwright-core, png/MISSING.txt says why and the page still renders.
 // Usage: node report/render.mjs <report-dir>     (set up once: bash scripts/install-report-deps.sh)
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import {fileURLToPath} from 'node:url';
 import * as vega from 'vega';
@@ -19,6 +23,7 @@ if (!dir) {
 
 // One look for every chart, in the page and in the SVGs.
 const config = {
+  background: 'white',
   font: 'DejaVu Sans, Helvetica, Arial, sans-serif',
   title: {fontSize: 16, subtitleFontSize: 12, subtitleColor: '#555', anchor: 'start', offset: 10},
   axis: {titleFontSize: 12, labelFontSize: 11, titleFontWeight: 'normal'},
@@ -68,6 +73,44 @@ for (const [id, spec] of Object.entries(specs)) {
   view.finalize();
 }
 
+// Print resolution: 2 device pixels per CSS pixel.
+async function writePngs(ids) {
+  const pngDir = path.join(dir, 'png');
+  fs.mkdirSync(pngDir, {recursive: true});
+  fs.rmSync(path.join(pngDir, 'MISSING.txt'), {force: true});
+  let chromium;
+  try {
+    ({chromium} = await import('playwright-core'));
+  } catch (e) {
+    return `playwright-core is not installed (${e.code || e.message}); run bash scripts/install-report-deps.sh`;
+  }
+  const exe = [process.env.CHROMIUM, '/usr/bin/chromium', '/usr/bin/chromium-browser'].find((p) => p && fs.existsSync(p));
+  if (!exe) return 'no chromium at $CHROMIUM, /usr/bin/chromium or /usr/bin/chromium-browser';
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'lodbench-png-'));
+  const browser = await chromium.launchPersistentContext(profile, {
+    executablePath: exe, headless: true, deviceScaleFactor: 2,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+           '--disable-component-update', '--disable-sync']});
+  try {
+    const page = await browser.newPage();
+    for (const id of ids) {
+      const svg = fs.readFileSync(path.join(dir, 'svg', `${id}.svg`), 'utf8');
+      await page.setContent(`<!DOCTYPE html><html><body style="margin:0;background:#fff">${svg}</body></html>`);
+      await (await page.$('svg')).screenshot({path: path.join(pngDir, `${id}.png`)});
+    }
+  } finally {
+    await browser.close();
+    fs.rmSync(profile, {recursive: true, force: true});
+  }
+  return '';
+}
+
+const pngMissing = await writePngs(Object.keys(specs)).catch((e) => `chromium failed: ${e.message.split('\n')[0]}`);
+if (pngMissing) {
+  fs.writeFileSync(path.join(dir, 'png', 'MISSING.txt'), `PNG charts not written: ${pngMissing}\n`);
+  console.error(`render.mjs: PNG charts not written: ${pngMissing} (SVGs are complete)`);
+}
+
 const lib = (p) => scriptSafe(fs.readFileSync(path.join(here, 'node_modules', p), 'utf8'));
 const body = embedImages(read('body.html'));
 const toc = [...body.matchAll(/<h2 id="([^"]+)">([^<]*)<\/h2>/g)]
@@ -97,6 +140,7 @@ code { font-size: 12px; }
 figure { margin: 12px 0; }
 figure.chart-box { border: 1px solid #eee; padding: 8px; display: inline-block; }
 figcaption { color: #555; font-size: 12px; margin-top: 4px; }
+.chart-files { font-size: 12px; margin-top: 4px; }
 figure.strip { display: block; }
 figure.strip figcaption { font-weight: bold; color: #222; font-size: 13px; margin: 0 0 4px; }
 figure.strip:target { outline: 3px solid #f0b400; }
@@ -128,4 +172,5 @@ Promise.all(Object.entries(specs).map(([id, spec]) =>
 `;
 fs.writeFileSync(path.join(dir, 'report.html'), html);
 console.error(`render.mjs: ${path.join(dir, 'report.html')} (${(html.length / 1e6).toFixed(1)} MB), ` +
-              `${Object.keys(specs).length} SVGs in ${path.join(dir, 'svg')}`);
+              `${Object.keys(specs).length} SVGs in ${path.join(dir, 'svg')}` +
+              (pngMissing ? '' : `, PNGs in ${path.join(dir, 'png')}`));

@@ -1,7 +1,7 @@
 #pragma once
 // The report's charts, declared as Vega-Lite specifications (https://vega.github.io/vega-lite/)
-// over data rows computed here; report/render.mjs draws them (HTML and SVG). A chart without the
-// metrics it needs is kept as a note saying why it was left out.
+// over data rows computed here; report/render.mjs draws them (HTML, SVG and PNG). A chart without
+// the metrics it needs is kept as a note saying why it was left out.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -11,8 +11,8 @@
 namespace lb {
 
 struct Chart {
-  std::string id;       // file stem: charts/<id>.vl.json, svg/<id>.svg
-  std::string section;  // "speed", "histogram", "timeline"
+  std::string id;       // file stem: charts/<id>.vl.json, svg/<id>.svg, png/<id>.png
+  std::string section;  // "speed", "scale", "histogram", "timeline"
   std::string title;
   std::string note;      // non-empty: the chart is omitted, and this says why
   std::string caption;   // shown under the chart (e.g. cases it could not include)
@@ -25,20 +25,65 @@ constexpr const char* kVegaLiteSchema = "https://vega.github.io/schema/vega-lite
 // Triangle-size histogram bins (docs/results-format.md: 15 bins, powers of two of pixel area).
 std::vector<std::string> histogramBinLabels();
 
-// GPU ms and triangles vs mean and p95 screen-space error, with each scheme's Pareto front.
+// GPU ms and triangles vs mean and p95 screen-space error, with each scheme's Pareto front and
+// errbound's max_error_px sweep as the dashed reference front.
 std::vector<Chart> speedCharts(const ReportRun& run);
+// Scale study (issue 13): GPU ms (median, p95) and triangles against grid, resolution and each
+// scheme's swept parameter; only the charts whose variable the run varies.
+std::vector<Chart> scaleCharts(const ReportRun& run);
 // Triangle-size histograms (share of on-screen triangles per area bin), per scheme and path.
 Chart histogramChart(const ReportRun& run);
 // Per-frame GPU ms, triangles and error along each path.
 std::vector<Chart> timelineCharts(const ReportRun& run);
 
-// Schemes with at least one finished case: the colour domain, the same in every chart.
+// Links to a drawn chart's files (svg/<id>.svg, png/<id>.png), for the page next to each chart.
+std::string chartFilesMarkdown(const Chart& c);
+std::string chartFilesHtml(const Chart& c);
+
+// --- Scheme colours (charts_style.cpp) ---------------------------------------------------------
+// One fixed colour and point shape per scheme, the same in every chart, report and legend: Paul
+// Tol's colour-blind-safe "muted" palette, black for errbound (the reference front), grey for the
+// uniform baseline. Names not in the table get a deterministic Okabe-Ito colour from a hash.
+struct SchemeStyle {
+  const char* scheme;
+  const char* colour;  // "#rrggbb"
+  const char* shape;   // Vega point shape
+};
+const std::vector<SchemeStyle>& schemeStyles();
+std::string schemeColour(const std::string& scheme);
+std::string schemeShape(const std::string& scheme);
+
+// Schemes with at least one finished case: the colour domain of the run's charts.
 std::vector<std::string> chartSchemes(const ReportRun& run);
-// Shared encodings: scheme colours fixed by the run's scheme order, so every chart agrees.
+// Colour and shape encodings by scheme over chartSchemes(run), with the fixed table's values.
 nlohmann::json schemeColor(const ReportRun& run);
-// "log" when the positive values span more than a factor kLogSpan, else "linear".
+nlohmann::json schemeShapeEncoding(const ReportRun& run);
+
+// --- Axes (charts_axes.cpp) --------------------------------------------------------------------
+// Positive data spanning more than this many decades is drawn on a log axis.
+constexpr double kLogDecades = 1.5;
+enum class AxisKind { Auto, Linear, Log };
+struct AxisDomain {
+  std::string type = "linear";  // "linear" or "log"
+  double lo = 0, hi = 1;        // strictly outside every value: no point sits on the plot border
+  std::vector<double> ticks;    // round values (1, 2, 2.5, 5 x 10^k; log: 1, 2, 5 x 10^k) in [lo, hi]
+  std::string format = "~f";    // d3 format of the tick labels ("~s" for large counts)
+  int base = 10;                // of a log axis
+  std::string labelExpr;        // Vega expression naming ticks (e.g. pixels as "320x180"); "" none
+};
+// A padded domain with round ends and ticks; Auto picks log when the positive values span more
+// than kLogDecades. Log is ignored (linear) when a value is <= 0. Non-finite values are ignored.
+AxisDomain niceDomain(const std::vector<double>& values, AxisKind kind = AxisKind::Auto);
+// A base-2 log axis with a tick at every distinct value (grid sizes), padded by a quarter octave.
+AxisDomain log2Domain(const std::vector<double>& values);
+// "log" when the positive values span more than kLogDecades, else "linear".
 std::string scaleTypeFor(const std::vector<double>& values);
-// A cost axis' scale: log, or linear without forcing zero in (costs sit far from zero).
+// Vega-Lite scale and axis of a domain (explicit domain and tick values, no automatic nice).
+nlohmann::json scaleJson(const AxisDomain& d);
+nlohmann::json axisJson(const AxisDomain& d);
+// A positional encoding: field, quantitative, title (with " (log)" on log axes), scale, axis.
+nlohmann::json positionEncoding(const std::string& field, const std::string& title, const AxisDomain& d);
+// A cost axis' scale without a computed domain (faceted charts): log, or linear without zero.
 nlohmann::json valueScale(const std::string& type);
 
 }  // namespace lb

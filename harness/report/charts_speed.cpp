@@ -1,8 +1,11 @@
 // Speed-vs-accuracy charts (design section 8): cost (GPU ms, triangles) against screen-space
-// error, one point per case, each scheme's Pareto front per path as a line.
+// error, one point per case, each scheme's Pareto front per path as a line, and errbound's sweep
+// over max_error_px as the dashed reference front. One panel per path and error kind, each with
+// its own padded, round axis domain (charts_axes.cpp), so a paper can print any panel.
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "report/charts.h"
 #include "report/pareto.h"
@@ -13,13 +16,14 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kLogSpan = 20;  // wider value ranges than this read better on a log axis
-
 struct ErrorKind {
   const char* field;
-  const char* label;
+  const char* label;  // panel title and data column "error"
+  const char* axis;   // x-axis title: exactly what is plotted
 };
-constexpr ErrorKind kErrors[] = {{"err_mean_px", "mean error"}, {"err_p95_px", "p95 error"}};
+constexpr ErrorKind kErrors[] = {
+    {"err_mean_px", "mean error", "mean error (px), averaged over measured frames"},
+    {"err_p95_px", "p95 error", "p95 error (px), averaged over measured frames"}};
 
 struct Cost {
   const char* id;
@@ -30,105 +34,59 @@ struct Cost {
   const char* better;  // the lower-left corner's annotation
 };
 constexpr Cost kCosts[] = {
-    {"speed_gpu_ms", "gpu_ms", "gpu_ms", "GPU time vs screen-space error", "GPU time per frame (ms, median)",
+    {"speed_gpu_ms", "gpu_ms", "gpu_ms", "GPU time vs screen-space error", "GPU ms/frame, median",
      "\u2199 better (faster, more accurate)"},
-    {"speed_triangles", "triangles", "triangles", "Triangles vs screen-space error", "triangles per frame (median)",
+    {"speed_triangles", "triangles", "triangles", "Triangles vs screen-space error", "triangles/frame, median",
      "\u2199 better (fewer triangles, more accurate)"},
 };
 
-json speedSpec(const ReportRun& run, const Cost& cost, const std::string& yScale, const std::string& dataName,
-               bool hasErrbound) {
-  json x = {{"field", "err_px"},
-            {"type", "quantitative"},
-            {"title", "screen-space error (px, mean over measured frames)"},
-            {"scale", {{"zero", false}}}};
-  json y = {{"field", cost.field}, {"type", "quantitative"}, {"title", cost.axis}, {"scale", valueScale(yScale)}};
+json fieldEquals(const char* field, const std::string& value) { return {{"field", field}, {"equal", value}}; }
+
+// One panel: the rows of one path and error kind, on their own axes.
+json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const std::string& scenario,
+           const AxisDomain& xd, const AxisDomain& yd, bool hasErrbound, bool titleScenario) {
+  json cell = {{"filter", {{"and", {fieldEquals("scenario", scenario), fieldEquals("error", err.label)}}}}};
+  json x = positionEncoding("err_px", err.axis, xd);
+  json y = positionEncoding(cost.field, cost.axis, yd);
   json color = schemeColor(run);
-  json shape = {
-      {"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", chartSchemes(run)}}}};
   json tooltip = json::array({{{"field", "case_id"}, {"title", "case"}},
                               {{"field", "params"}, {"title", "parameters"}},
-                              {{"field", "err_px"}, {"title", "error (px)"}, {"format", ".3f"}},
+                              {{"field", "err_px"}, {"title", std::string(err.label) + " (px)"}, {"format", ".3f"}},
                               {{"field", cost.field}, {"title", cost.axis}, {"format", ".4~g"}},
-                              {{"field", "on_front"}, {"title", "on the Pareto front"}}});
-  json front = {
-      {"transform", {{{"filter", "datum.on_front"}}}},
-      {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.8}}},
-      {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
-  // errbound's sweep over max_error_px, all its cases on the path joined in error order: the
-  // reference front (the fewest triangles errbound needs for each error level) every scheme is read against.
-  json errboundFront = {
-      {"transform", {{{"filter", "datum.errbound_front"}}}},
-      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", "#222222"}}},
-      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}};
-  json points = {{"mark", {{"type", "point"}, {"filled", true}, {"size", 80}, {"opacity", 0.9}}},
-                 {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"shape", shape}, {"tooltip", tooltip}}}};
-  // One row per facet cell carries corner=true, so the annotation is drawn once per cell.
-  json better = {{"transform", {{{"filter", "datum.corner"}}}},
-                 {"mark",
-                  {{"type", "text"},
-                   {"text", cost.better},
-                   {"align", "left"},
-                   {"baseline", "bottom"},
-                   {"dx", 6},
-                   {"dy", -6},
-                   {"fontSize", 11},
-                   {"fontStyle", "italic"},
-                   {"color", "#2e7d32"}}},
-                 {"encoding", {{"x", {{"value", 0}}}, {"y", {{"value", "height"}}}}}};
-  return {{"$schema", kVegaLiteSchema},
-          {"title",
-           {{"text", cost.title},
-            {"subtitle",
-             "one point per case; lines: each scheme's Pareto front (no other setting of the scheme "
-             "is both cheaper and more accurate); dashed: errbound's sweep over max_error_px, the reference front"}}},
-          {"data", {{"url", "data/" + dataName + ".json"}}},
-          {"facet",
-           {{"row", {{"field", "scenario"}, {"type", "nominal"}, {"title", "camera path"}, {"sort", run.scenarios}}},
-            {"column",
-             {{"field", "error"},
-              {"type", "nominal"},
-              {"title", nullptr},
-              {"sort", {kErrors[0].label, kErrors[1].label}},
-              {"header", {{"labelFontSize", 13}}}}}}},
-          // The reference layer only when errbound has rows: an empty layer makes Vega warn of infinite extents.
-          {"spec",
-           {{"width", 320},
-            {"height", 220},
-            {"layer", hasErrbound ? json{front, points, better, errboundFront} : json{front, points, better}}}},
-          {"resolve", {{"scale", {{"x", "independent"}, {"y", "independent"}}}}}};
+                              {{"field", "on_front"}, {"title", "on the scheme's Pareto front"}}});
+  json layers = json::array();
+  // Each scheme's Pareto front (errbound's own line is the dashed reference below).
+  layers.push_back({{"transform", {cell, {{"filter", "datum.on_front && !datum.errbound"}}}},
+                    {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.85}}},
+                    {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}});
+  // errbound's sweep in max_error_px order: the fewest triangles errbound needs for each error
+  // level, the reference every scheme is read against. Only when present: an empty layer makes
+  // Vega warn of infinite extents.
+  if (hasErrbound)
+    layers.push_back({{"transform", {cell, {{"filter", "datum.errbound"}}}},
+                      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour("errbound")}}},
+                      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
+  layers.push_back({{"transform", {cell}},
+                    {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
+                    {"encoding",
+                     {{"x", x}, {"y", y}, {"color", color}, {"shape", schemeShapeEncoding(run)}, {"tooltip", tooltip}}}});
+  layers.push_back({{"data", {{"values", json::array({json::object()})}}},
+                    {"mark",
+                     {{"type", "text"},
+                      {"text", cost.better},
+                      {"align", "left"},
+                      {"baseline", "bottom"},
+                      {"dx", 6},
+                      {"dy", -6},
+                      {"fontSize", 11},
+                      {"fontStyle", "italic"},
+                      {"color", "#2e7d32"}}},
+                    {"encoding", {{"x", {{"value", 0}}}, {"y", {{"value", "height"}}}}}});
+  std::string title = titleScenario ? scenario + " \u00b7 " + err.label : std::string(err.label);
+  return {{"title", title}, {"width", 320}, {"height", 250}, {"layer", layers}};
 }
 
 }  // namespace
-
-std::vector<std::string> chartSchemes(const ReportRun& run) {
-  std::vector<std::string> out;
-  for (auto& s : run.schemes)
-    if (std::any_of(run.cases.begin(), run.cases.end(), [&](auto& c) { return c.scheme == s && c.status == "ok"; }))
-      out.push_back(s);
-  return out;
-}
-
-json schemeColor(const ReportRun& run) {
-  return {{"field", "scheme"},
-          {"type", "nominal"},
-          {"title", "scheme"},
-          {"scale", {{"domain", chartSchemes(run)}, {"scheme", "tableau10"}}}};
-}
-
-json valueScale(const std::string& type) {
-  return type == "log" ? json{{"type", "log"}} : json{{"type", "linear"}, {"zero", false}};
-}
-
-std::string scaleTypeFor(const std::vector<double>& values) {
-  double lo = INFINITY, hi = 0;
-  for (double v : values) {
-    if (v <= 0) return "linear";  // a log axis cannot show zero
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  return !values.empty() && hi / lo > kLogSpan ? "log" : "linear";
-}
 
 std::vector<Chart> speedCharts(const ReportRun& run) {
   std::vector<Chart> charts;
@@ -138,8 +96,9 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     chart.section = "speed";
     chart.title = cost.title;
     std::vector<std::string> unmeasured;
-    std::vector<double> ys;
-    std::map<std::string, bool> cornerDone;
+    std::map<std::string, std::vector<double>> costsOf;               // by scenario: one y axis per row
+    std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
+    std::set<std::string> errboundIn;  // scenarios with errbound cases
     for (const ErrorKind& err : kErrors) {
       // Group cases by scheme and path: a front only compares settings of one scheme on one path.
       std::map<std::pair<std::string, std::string>, std::vector<const ReportCase*>> groups;
@@ -160,20 +119,23 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
         std::vector<bool> onFront(cases.size(), false);
         for (size_t i : paretoFront(xs, costs)) onFront[i] = true;
         for (size_t i = 0; i < cases.size(); ++i) {
-          std::string cell = key.second + "|" + err.label;
-          bool corner = !cornerDone[cell];
-          cornerDone[cell] = true;
-          chart.data.push_back({{"case_id", cases[i]->id},
-                                {"scheme", cases[i]->scheme},
-                                {"params", cases[i]->paramsLabel},
-                                {"scenario", cases[i]->scenario},
+          const ReportCase& c = *cases[i];
+          bool errbound = c.scheme == "errbound";
+          auto bound = c.params.find("max_error_px");
+          double sweep = errbound && bound != c.params.end() && bound->is_number() ? bound->get<double>() : xs[i];
+          chart.data.push_back({{"case_id", c.id},
+                                {"scheme", c.scheme},
+                                {"params", c.paramsLabel},
+                                {"scenario", c.scenario},
                                 {"error", err.label},
                                 {"err_px", xs[i]},
                                 {cost.field, costs[i]},
                                 {"on_front", bool(onFront[i])},
-                                {"errbound_front", cases[i]->scheme == "errbound"},
-                                {"corner", corner}});
-          ys.push_back(costs[i]);
+                                {"errbound", errbound},
+                                {"sweep", sweep}});
+          costsOf[c.scenario].push_back(costs[i]);
+          errsOf[{c.scenario, err.label}].push_back(xs[i]);
+          if (errbound) errboundIn.insert(c.scenario);
         }
       }
     }
@@ -182,14 +144,35 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
           std::string(cost.title) +
           ": left out, no case has both a cost and a screen-space error (err_mean_px, err_p95_px): the run had "
           "no measurement passes, or every case failed.";
-    } else {
-      bool hasErrbound = std::any_of(chart.data.begin(), chart.data.end(), [](const json& r) { return r["errbound_front"] == true; });
-      chart.spec = speedSpec(run, cost, scaleTypeFor(ys), chart.dataName, hasErrbound);
-      if (!unmeasured.empty()) {
-        std::string list;
-        for (auto& u : unmeasured) list += (list.empty() ? "" : ", ") + u;
-        chart.caption = "Not shown (no error metrics): " + list + ".";
-      }
+      charts.push_back(std::move(chart));
+      continue;
+    }
+    json rows = json::array();
+    size_t shown = 0;
+    for (auto& s : run.scenarios) shown += costsOf.count(s);
+    for (auto& s : run.scenarios) {
+      if (!costsOf.count(s)) continue;
+      AxisDomain yd = niceDomain(costsOf[s]);
+      json row = json::array();
+      for (const ErrorKind& err : kErrors)
+        if (errsOf.count({s, err.label}))
+          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, errboundIn.count(s) > 0, shown > 1));
+      rows.push_back({{"hconcat", row}});
+    }
+    json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
+                                 "the scheme is both cheaper and more accurate)"});
+    if (!errboundIn.empty()) subtitle.push_back("dashed: errbound's sweep over max_error_px, the reference front");
+    chart.spec = {{"$schema", kVegaLiteSchema},
+                  {"title",
+                   {{"text", cost.title},
+                    {"subtitle", subtitle}}},
+                  {"data", {{"url", "data/" + chart.dataName + ".json"}}},
+                  {"vconcat", rows},
+                  {"resolve", {{"scale", {{"color", "shared"}, {"shape", "shared"}}}}}};
+    if (!unmeasured.empty()) {
+      std::string list;
+      for (auto& u : unmeasured) list += (list.empty() ? "" : ", ") + u;
+      chart.caption = "Not shown (no error metrics): " + list + ".";
     }
     charts.push_back(std::move(chart));
   }

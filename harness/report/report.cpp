@@ -62,8 +62,10 @@ ReportOutput writeReport(const ReportOptions& options) {
   removeStale(out / "charts", ".vl.json");
   removeStale(out / "data", ".json");
   removeStale(out / "svg", ".svg");
+  removeStale(out / "png", ".png");
 
   std::vector<Chart> charts = speedCharts(run);
+  for (auto& c : scaleCharts(run)) charts.push_back(std::move(c));
   charts.push_back(histogramChart(run));
   for (auto& c : timelineCharts(run)) charts.push_back(std::move(c));
 

@@ -25,6 +25,7 @@ const Section kChartSections[] = {
     {"speed", "Speed vs accuracy",
      "Cost against screen-space geometric error, one point per case. A scheme's Pareto front joins its settings "
      "that no other setting of the same scheme beats on both axes; the lower-left corner is better."},
+    {"scale", "Scale study", "GPU time and triangles as the grid, the resolution or a scheme's parameter grows, everything else held."},
     {"histogram", "Triangle sizes",
      "How large the triangles are on screen. Bins are powers of two of the area in pixels; sub-pixel triangles "
      "waste rasterizer work, large ones lose detail."},
@@ -63,6 +64,7 @@ class Writer {
 };
 
 void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts) {
+  if (std::none_of(charts.begin(), charts.end(), [&](const Chart& c) { return c.section == s.id; })) return;  // scale: only when the run varies grid, resolution or a parameter
   w.heading(2, s.title, s.id);
   w.para(s.intro);
   for (auto& c : charts) {
@@ -71,10 +73,9 @@ void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts)
       w.para(c.note, "note");
       continue;
     }
-    w.raw("![" + c.title + "](svg/" + c.id + ".svg)\n\nSpec: [charts/" + c.id + ".vl.json](charts/" + c.id +
-              ".vl.json)" + (c.caption.empty() ? "" : ". " + c.caption) + "\n\n",
+    w.raw("![" + c.title + "](svg/" + c.id + ".svg)\n\n" + chartFilesMarkdown(c) + (c.caption.empty() ? "" : ". " + c.caption) + "\n\n",
           "<figure class=\"chart-box\"><div class=\"chart\" id=\"chart-" + c.id + "\" data-chart=\"" + c.id +
-              "\"></div>" + (c.caption.empty() ? "" : "<figcaption>" + htmlEscape(c.caption) + "</figcaption>") +
+              "\"></div>" + chartFilesHtml(c) + (c.caption.empty() ? "" : "<figcaption>" + htmlEscape(c.caption) + "</figcaption>") +
               "</figure>\n");
   }
 }

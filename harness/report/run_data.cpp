@@ -58,6 +58,12 @@ static void fillCase(ReportCase& c, const json& j) {
     c.width = (*r)[0].get<int>();
     c.height = (*r)[1].get<int>();
   }
+  if (auto g = j.find("grid"); g != j.end() && g->is_number_integer()) {
+    c.grid = g->get<int>();
+  } else if (auto in = j.find("inputs"); in != j.end() && in->is_object() && in->contains("measurement")) {
+    const json& m = (*in)["measurement"];
+    if (m.is_object() && m.contains("grid") && m["grid"].is_number_integer()) c.grid = m["grid"].get<int>();
+  }
   if (auto t = j.find("target_area_px"); t != j.end() && t->is_number()) c.targetAreaPx = t->get<double>();
 }
 
@@ -130,10 +136,12 @@ static void sortCases(ReportRun& run) {
   });
 }
 
-// Scenario = path stem, plus terrain and resolution where the run has more than one of them.
+// Scenario = path stem, plus terrain, resolution and grid where the run has more than one of them.
 static void labelCases(ReportRun& run) {
   std::set<std::string> terrains, resolutions;
+  std::set<int> grids;
   for (auto& c : run.cases) {
+    grids.insert(c.grid);
     terrains.insert(c.terrain);
     resolutions.insert(std::to_string(c.width) + "x" + std::to_string(c.height));
   }
@@ -142,6 +150,7 @@ static void labelCases(ReportRun& run) {
     c.scenario = c.path.empty() ? "(no path)" : fs::path(c.path).stem().string();
     if (terrains.size() > 1) c.scenario += " / " + c.terrain;
     if (resolutions.size() > 1) c.scenario += " / " + std::to_string(c.width) + "x" + std::to_string(c.height);
+    if (grids.size() > 1) c.scenario += " / grid " + std::to_string(c.grid);
   }
   sortCases(run);
   for (auto& c : run.cases) {

@@ -16,6 +16,7 @@ struct ReportCase {
   std::string label;        // scheme + parameters, for legends
   std::string scenario;     // camera path stem (+ terrain, resolution where the run varies them)
   int width = 0, height = 0;
+  int grid = 0;  // patches per side (case file "grid", else inputs.measurement.grid); 0 unknown
   nlohmann::json params = nlohmann::json::object();
   nlohmann::json summary = nlohmann::json::object();
   nlohmann::json frames = nlohmann::json::array();  // per-frame records; empty without a case file
