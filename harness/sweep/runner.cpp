@@ -19,6 +19,7 @@
 #include "schemes/registry.h"
 #include "results/run_dir.h"
 #include "sweep/gbench_json.h"
+#include "sweep/progress.h"
 #include "sweep/timing_passes.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -45,23 +46,15 @@ static double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-static void progressLine(bool progress, const char* what, int done, int total, double elapsed) {
-  // On a terminal the line updates in place; in logs, one line per tenth of the work.
-  bool tty = isatty(fileno(stderr));
-  if (!progress || !(tty ? done % 10 == 0 || done == total : done % std::max(1, total / 10) == 0)) return;
-  std::fprintf(stderr, "%s    %s %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", what, done, total, elapsed,
-               elapsed / done * (total - done), tty ? "   " : "\n");
-  std::fflush(stderr);
-}
-
 // Reference images are kept per terrain: keyed by its contents, so two terrains sharing a label
 // (or a cache kept across runs) never lend each other images.
 static std::string referenceKey(const Case& c) {
   return c.terrainDigest.empty() ? c.terrainLabel : c.terrainLabel + "#" + c.terrainDigest.substr(0, 16);
 }
 
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
-                   ReferenceCache& refs) {
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
+                   SweepProgress* progress, ReferenceCache& refs) {
+  using Phase = SweepProgress::Phase;
   auto t0 = std::chrono::steady_clock::now();
   CaseResult result;
   const Scheme* scheme = findScheme(c.scheme);
@@ -83,6 +76,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };
 
+  if (progress) progress->phase(Phase::Timing);
   // Clock control: a fixed workload until its time is stable, so every case starts at a settled clock.
   std::unique_ptr<Calibrator> calibrator;
   CalibrationRun calibrationBefore;
@@ -104,7 +98,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p);
       for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
-      progressLine(progress, "frame", rep * frames + f + 1, total, secondsSince(t0));
+      if (progress) progress->frame(rep * frames + f + 1, total);
     }
   renderer.finish();
   for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
@@ -128,9 +122,9 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       if ((f < 0 ? frames + f : f) == frame) return true;
     return false;
   };
+  if (progress) progress->phase(Phase::Measure);
   if (ms.every > 0) {
     int count = (frames + ms.every - 1) / ms.every, done = 0;
-    auto tm = std::chrono::steady_clock::now();
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
       FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
@@ -141,9 +135,10 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       m.errorMap.clear();
       m.crackMask.clear();
       result.metrics.push_back(std::move(m));
-      progressLine(progress, "measured frame", ++done, count, secondsSince(tm));
+      if (progress) progress->frame(++done, count);
     }
   }
+  if (progress) progress->phase(Phase::Images);
 
   // Images are separate passes after the timed frames, never inside them.
   for (int f : config.images.frames) {
@@ -250,9 +245,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     run["test_disabled_features"] = off;
   writeFileAtomic(runJson, run.dump(2));
 
-  auto t0 = std::chrono::steady_clock::now();
-  double runSeconds = 0;
-  int ran = 0;
+  std::vector<CaseWork> work = plannedWork(config, cases);
+  for (size_t i = 0; i < cases.size(); ++i)
+    if (plan.reuse.count(cases[i].id)) work[i] = CaseWork{cases[i].scheme, 0, 0, false};
+  SweepProgress progress(options.progress, work);
   ReferenceCache refs(totals.dir + "/truth");  // ground-truth images persist for resume
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
@@ -264,18 +260,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       totals.ok++;
       continue;
     }
-    if (options.progress) {
-      // Remaining time from the mean duration of the cases run so far in this invocation.
-      double left = ran ? runSeconds / ran * double(cases.size() - i) : 0;
-      std::string bar(20, '.');
-      std::fill(bar.begin(), bar.begin() + long(20 * i / cases.size()), '#');
-      std::fprintf(stderr, "[%s] %zu/%zu %s  (%.0fs elapsed%s)\n", bar.c_str(), i + 1, cases.size(), c.id.c_str(),
-                   secondsSince(t0), ran ? (", ~" + std::to_string(int(left)) + "s left").c_str() : "");
-    }
-    auto tc = std::chrono::steady_clock::now();
+    progress.startCase(i, c.id);
     CaseResult r;
     try {
-      r = runCase(ctx, c, config, totals.dir + "/images", options.progress, refs);
+      r = runCase(ctx, c, config, totals.dir + "/images", &progress, refs);
     } catch (const Interrupted&) {
       totals.interrupted = true;
       break;
@@ -291,8 +279,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
         createContext(ctx, {config.device, options.validation});
       }
     }
-    runSeconds += secondsSince(tc);
-    ++ran;
+    progress.endCase(r.status == "ok");
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
