@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "camera/camera_path.h"
 #include "sweep/config.h"
@@ -13,6 +14,8 @@ namespace lb {
 
 std::vector<CaseWork> plannedWork(const Config& config, const std::vector<Case>& cases) {
   std::map<std::string, int> framesOf;  // per path file
+  std::set<std::string> truthMade;        // terrain, path and resolution whose truth an earlier case makes
+  const bool truth = config.measure.on("image") || config.measure.on("cracks");
   int modes = 1;  // shaded, plus one replay per other timing mode (sweep/timing_passes.h)
   for (const std::string& m : config.timing.modes) modes += m != "shaded";
   std::vector<CaseWork> out;
@@ -24,6 +27,9 @@ std::vector<CaseWork> plannedWork(const Config& config, const std::vector<Case>&
     w.scheme = c.scheme;
     w.timingFrames = (config.warmupFrames + frames * config.repetitions) * modes;
     w.measuredFrames = config.measure.every > 0 ? (frames + config.measure.every - 1) / config.measure.every : 0;
+    std::string key = c.terrainLabel + "#" + c.terrainDigest + "|" + c.path + "|" + std::to_string(c.width) + "x" +
+                      std::to_string(c.height);
+    if (truth && truthMade.insert(key).second) w.truthFrames = w.measuredFrames;
     out.push_back(w);
   }
   return out;
@@ -47,6 +53,14 @@ double EtaEstimator::cost(const Sums& s, const std::string& scheme) {
   return -1;
 }
 
+EtaEstimator::Own EtaEstimator::own(const std::string& scheme) const {
+  auto one = [&](const Sums& s) {
+    auto it = s.find(scheme);
+    return it != s.end() && it->second.units > 0 ? it->second.seconds / double(it->second.units) : -1.0;
+  };
+  return {one(timing_), one(measured_), one(overhead_)};
+}
+
 void EtaEstimator::addTiming(const std::string& scheme, int frames, double seconds) {
   add(timing_, scheme, frames, seconds);
 }
@@ -54,6 +68,7 @@ void EtaEstimator::addMeasured(const std::string& scheme, int frames, double sec
   add(measured_, scheme, frames, seconds);
 }
 void EtaEstimator::addOverhead(const std::string& scheme, double seconds) { add(overhead_, scheme, 1, seconds); }
+void EtaEstimator::addTruth(int rayCasts, double seconds) { add(truth_, "", rayCasts, seconds); }
 
 double EtaEstimator::remaining(const std::vector<CaseWork>& work, bool& complete) const {
   complete = true;
@@ -69,6 +84,7 @@ double EtaEstimator::remaining(const std::vector<CaseWork>& work, bool& complete
     part(timingCost(w.scheme), w.timingFrames);
     part(measuredCost(w.scheme), w.measuredFrames);
     part(overheadCost(w.scheme), w.overhead ? 1 : 0);
+    part(truthCost(), w.truthFrames);
   }
   return total;
 }
@@ -95,8 +111,8 @@ static std::string leftText(double seconds, bool complete, bool measurementUnkno
   return s;
 }
 
-SweepProgress::SweepProgress(bool enabled, std::vector<CaseWork> cases)
-    : enabled_(enabled), cases_(std::move(cases)), start_(Clock::now()) {}
+SweepProgress::SweepProgress(bool enabled, std::vector<CaseWork> cases, std::function<Truth()> truth)
+    : enabled_(enabled), cases_(std::move(cases)), start_(Clock::now()), truth_(std::move(truth)) {}
 
 double SweepProgress::leftAfterCurrent(bool& complete) const {
   std::vector<CaseWork> rest(cases_.begin() + long(std::min(cases_.size(), current_ + 1)), cases_.end());
@@ -109,6 +125,7 @@ void SweepProgress::startCase(size_t index, const std::string& id) {
   phase_ = Phase::Setup;
   timedSeconds_ = 0;
   phaseDone_ = 0;
+  if (truth_) truthAtPhase_ = truth_();
   if (!enabled_) return;
   bool restComplete = true, caseComplete = true;
   double left = leftAfterCurrent(restComplete) + eta_.remaining({cases_[index]}, caseComplete);
@@ -124,6 +141,15 @@ void SweepProgress::startCase(size_t index, const std::string& id) {
 void SweepProgress::phase(Phase p) {
   double s = since(phaseStart_);
   const CaseWork& w = cases_[current_];
+  // Ray casts made in this phase are the truth's cost, not the phase's.
+  if (truth_) {
+    Truth now = truth_();
+    double t = now.seconds - truthAtPhase_.seconds;
+    eta_.addTruth(now.rayCasts - truthAtPhase_.rayCasts, t);
+    timedSeconds_ += t;
+    s -= t;
+    truthAtPhase_ = now;
+  }
   if (phase_ == Phase::Timing) eta_.addTiming(w.scheme, w.timingFrames, s);
   if (phase_ == Phase::Measure) eta_.addMeasured(w.scheme, w.measuredFrames, s);
   if (phase_ == Phase::Timing || phase_ == Phase::Measure) timedSeconds_ += s;
@@ -142,7 +168,7 @@ void SweepProgress::frame(int done, int total) {
   double left = elapsed / done * (total - done);
   CaseWork rest = w;
   rest.timingFrames = 0;
-  if (phase_ != Phase::Timing) rest.measuredFrames = 0;
+  if (phase_ != Phase::Timing) rest.measuredFrames = rest.truthFrames = 0;  // measured at the live rate
   bool caseComplete = true, restComplete = true;
   left += eta_.remaining({rest}, caseComplete) + leftAfterCurrent(restComplete);
   bool measurementUnknown = eta_.measuredCost("") < 0;

@@ -248,8 +248,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   std::vector<CaseWork> work = plannedWork(config, cases);
   for (size_t i = 0; i < cases.size(); ++i)
     if (plan.reuse.count(cases[i].id)) work[i] = CaseWork{cases[i].scheme, 0, 0, false};
-  SweepProgress progress(options.progress, work);
   ReferenceCache refs(totals.dir + "/truth");  // ground-truth images persist for resume
+  SweepProgress progress(options.progress, work, [&refs] {
+    return SweepProgress::Truth{refs.rayCasts(), refs.rayCastSeconds()};
+  });
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
   for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
@@ -293,6 +295,18 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     writeAggregates(totals.dir, context);
   }
   run["end_time"] = isoTimeUtc();
+  // What each scheme's work cost in this invocation (the ETA's figures), to size configs by.
+  json costs = json::object();
+  double rayCast = progress.estimator().truthCost();
+  run["ray_cast_s_per_image"] = rayCast >= 0 ? json(rayCast) : json(nullptr);
+  for (auto& c : cases) {
+    EtaEstimator::Own o = progress.estimator().own(c.scheme);
+    auto val = [](double v) { return v >= 0 ? json(v) : json(nullptr); };
+    if (o.timing >= 0)
+      costs[c.scheme] = {{"timing_s_per_frame", val(o.timing)}, {"measured_s_per_frame", val(o.measured)},
+                         {"case_overhead_s", val(o.overhead)}};
+  }
+  run["costs"] = costs;
   run["interrupted"] = totals.interrupted;
   run["totals"] = {{"ok", totals.ok}, {"failed", totals.failed}, {"skipped", totals.skipped}, {"cases", cases.size()}};
   run["validation_errors"] = ctx.validationErrors.load();
