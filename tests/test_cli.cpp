@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -32,8 +33,55 @@ TEST(Cli, ListShowsSchemesWithParameters) {
   Out o = runCli("list");
   EXPECT_EQ(o.code, 0);
   EXPECT_NE(o.text.find("sphere"), std::string::npos);
-  EXPECT_NE(o.text.find("tri_size   default 3"), std::string::npos) << o.text;
   EXPECT_NE(o.text.find("range [1, 64]"), std::string::npos) << o.text;
+  // Issue 14: columns sized from the content (long names broke them) and plain range numbers.
+  EXPECT_NE(o.text.find("range [0, 10000]"), std::string::npos) << "not 1e+04: " << o.text;
+  EXPECT_EQ(o.text.find("e+"), std::string::npos) << o.text;
+  size_t defaultCol = std::string::npos, rangeCol = std::string::npos, descCol = std::string::npos;
+  int paramLines = 0, triSize3 = 0;
+  std::istringstream lines(o.text);
+  for (std::string line; std::getline(lines, line);) {
+    size_t d = line.find("  default "), r = line.find("  range [");
+    if (d == std::string::npos) {
+      if (line.empty() || line[0] == ' ') continue;
+      size_t gap = line.find("  "), text = line.find_first_not_of(' ', gap);  // name, then the description
+      if (descCol == std::string::npos) descCol = text;
+      EXPECT_EQ(text, descCol) << "description column: " << line;
+      continue;
+    }
+    ++paramLines;
+    if (defaultCol == std::string::npos) defaultCol = d, rangeCol = r;
+    EXPECT_EQ(d, defaultCol) << "default column: " << line;
+    EXPECT_EQ(r, rangeCol) << "range column: " << line;
+    triSize3 += line.find(" tri_size ") != std::string::npos && line.find("default 3 ") != std::string::npos;
+  }
+  EXPECT_GT(paramLines, 10);
+  EXPECT_GE(triSize3, 3) << "sphere, sphere-edge, sphere-rings: tri_size default 3";
+}
+
+// Issue 14: numbers in errors are the shortest round-trip text (std::to_string gave "0.000100" and
+// CLI11's ranges "0.000000 to 0.500000"); --dry-run says nothing of shards when none was asked.
+TEST(Cli, NumbersInErrorsAndDryRunWording) {
+  std::string bad = ::testing::TempDir() + "/tiny_param.json";
+  std::ofstream(bad) << "{\"name\": \"x\", \"paths\": [\"" << kSrc << "/configs/paths/flyover.csv\"],\n"
+                     << " \"schemes\": [{\"name\": \"sphere\", \"params\": {\"tri_size\": 0.0001}}]}\n";
+  Out o = runCli("run " + bad + " --dry-run");
+  EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find("0.0001 is outside [0.5, 64]"), std::string::npos) << o.text;
+  EXPECT_EQ(o.text.find("0.000"), o.text.find("0.0001")) << "no fixed 6-digit numbers: " << o.text;
+
+  o = runCli("compare /nonexistent/a /nonexistent/b --alpha 0.9");
+  EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find("0.9 is outside [1e-09, 0.5]"), std::string::npos) << o.text;
+  EXPECT_EQ(o.text.find("0.000000"), std::string::npos) << o.text;
+
+  o = runCli("run " + lb::test::kTinyConfig + " --dry-run");
+  EXPECT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("lodbench: 2 cases\n"), std::string::npos) << o.text;
+  EXPECT_EQ(o.text.find("shard"), std::string::npos) << o.text;
+  o = runCli("run " + lb::test::kTinyConfig + " --dry-run --shard 1/2");
+  EXPECT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("1 cases (shard 1/2 of 2)"), std::string::npos) << o.text;
 }
 
 TEST(Cli, BadFlagsAndInputsExitTwoWithAClearMessage) {

@@ -312,6 +312,32 @@ TEST(Compare, OneDisturbedRoundIsNotARegression) {
   EXPECT_EQ(r.exitCode(), 0);
 }
 
+// Issue 14: a significant 1.56x slowdown under CI's 2x threshold was called "unchanged". The verdict
+// line now leads with the ratio and says it is within the threshold; JSON keeps the enum.
+TEST(Compare, SignificantSlowdownUnderTheThresholdIsSaidSo) {
+  RunData base = rounds("w_base", {1.0, 1.01, 0.99});
+  CompareOptions ci;
+  ci.threshold = 1.0;
+  CompareReport r = compareRuns(base, rounds("w_slow", {1.56, 1.5756, 1.5444}), ci);
+  ASSERT_EQ(only(r).timing.verdict, TimingVerdict::Unchanged);
+  ASSERT_LT(only(r).timing.p, ci.alpha);
+  EXPECT_EQ(r.exitCode(), 0);
+  std::string md = verdictMarkdown(r);
+  EXPECT_NE(md.find("# lodbench compare: no regression (1 cases); GPU time ratio 1.56x, p = "), std::string::npos) << md;
+  EXPECT_NE(md.find(": slower, within the threshold (2x)\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **1.560x** ["), std::string::npos) << md;
+  EXPECT_EQ(md.find("unchanged"), std::string::npos) << md;
+  json v = verdictJson(r);
+  EXPECT_EQ(v["cases"][0]["timing"]["verdict"], "unchanged");
+  EXPECT_EQ(v["cases"][0]["timing"]["verdict_text"], "slower, within the threshold (2x)");
+  EXPECT_EQ(v["summary"], verdictLine(r));
+  // Not significant: no change claimed either way.
+  r = compareRuns(base, rounds("w_same", {1.0, 0.99, 1.01}), ci);
+  EXPECT_EQ(timingWords(only(r).timing, ci), "no significant change");
+  EXPECT_EQ(timingWords(compareRuns(base, rounds("w_big", {2.5, 2.4, 2.6}), ci).cases[0].timing, ci),
+            "REGRESSION: slower beyond the threshold (2x)");
+}
+
 TEST(Compare, InputErrorsNameTheFile) {
   EXPECT_THROW(loadRun("/nonexistent/run"), InputError);
   auto dir = writeRun("bad_case", runContext(), {caseDoc("x", gpuTimes(5, 1))});

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "error.h"
+#include "schemes/registry.h"
 #include "sweep/config.h"
 
 using namespace lb;
@@ -20,14 +22,25 @@ static std::string errorOf(const std::string& text) {
   return "";
 }
 
-TEST(Config, QuickConfigParses) {
+// The default job is the whole comparison (issue 14): every registered scheme but reference (level
+// 64 everywhere, ~15 s a frame on lavapipe) with at least 3 values of one parameter, so each has a
+// front, over one path at lavapipe size.
+TEST(Config, QuickConfigRunsEverySchemeWithAFront) {
   Config c = loadConfig(kBase + "/quick.json");
   EXPECT_EQ(c.name, "quick");
-  ASSERT_EQ(c.schemes.size(), 2u);
-  EXPECT_EQ(c.schemes[0].name, "uniform");
-  EXPECT_EQ(c.schemes[1].name, "sphere");
-  EXPECT_EQ(expandCases(c).size(), 2u);
-  EXPECT_EQ(c.resolutions[0], std::make_pair(320, 180));
+  std::map<std::string, size_t> variants;
+  for (auto& e : c.schemes) variants[e.name] += e.variants.size();
+  for (const Scheme* s : allSchemes()) {
+    const std::string& name = s->info().name;
+    if (name == "reference") continue;
+    EXPECT_GE(variants[name], 3u) << name << " needs a sweep of its main parameter in quick.json";
+  }
+  EXPECT_EQ(variants.count("reference"), 0u) << "update the test and quick.json's description together";
+  EXPECT_EQ(c.paths.size(), 1u);
+  EXPECT_EQ(c.resolutions.size(), 1u);
+  EXPECT_LE(c.resolutions[0].first * c.resolutions[0].second, 320 * 180);
+  EXPECT_GT(c.measure.every, 0);
+  EXPECT_EQ(expandCases(c).size(), 3 * (allSchemes().size() - 1));
 }
 
 TEST(Config, CartesianProductOfParametersPathsAndTerrains) {

@@ -54,9 +54,10 @@ TEST(GbenchJson, SchemaFieldsRepetitionsAndCounters) {
     EXPECT_EQ(e["repetition_index"], r);
     EXPECT_EQ(e["threads"], 1);
     EXPECT_EQ(e["iterations"], 4);
-    EXPECT_EQ(e["time_unit"], "ms");
-    EXPECT_DOUBLE_EQ(e["real_time"].get<double>(), r == 0 ? 2.5 : 6.5);
-    EXPECT_DOUBLE_EQ(e["cpu_time"].get<double>(), r == 0 ? 5.0 : 13.0);  // cpu_ms = 2 x gpu_ms
+    EXPECT_EQ(e["time_unit"], "us");  // microseconds: compare.py prints whole units
+    EXPECT_DOUBLE_EQ(e["real_time"].get<double>(), r == 0 ? 2500.0 : 6500.0);
+    EXPECT_DOUBLE_EQ(e["cpu_time"].get<double>(), r == 0 ? 5000.0 : 13000.0);  // cpu_ms = 2 x gpu_ms
+    EXPECT_DOUBLE_EQ(e["fps"].get<double>(), r == 0 ? 400.0 : 1e6 / 6500.0);
     // clip_invocations of record i is 2000 + 2 i: records 0..3 -> median 2003, records 4..7 -> 2011.
     EXPECT_DOUBLE_EQ(e["triangles"].get<double>(), r == 0 ? 2003.0 : 2011.0);
     EXPECT_DOUBLE_EQ(e["patches"].get<double>(), 64.0);
@@ -67,10 +68,11 @@ TEST(GbenchJson, SchemaFieldsRepetitionsAndCounters) {
   EXPECT_EQ(b[3]["name"], "uniform-level8_mean");
   EXPECT_EQ(b[3]["run_type"], "aggregate");
   EXPECT_EQ(b[3]["aggregate_name"], "mean");
-  EXPECT_DOUBLE_EQ(b[3]["real_time"].get<double>(), 4.5);
+  EXPECT_DOUBLE_EQ(b[3]["real_time"].get<double>(), 4500.0);
+  EXPECT_EQ(b[3]["time_unit"], "us");
   EXPECT_EQ(b[4]["aggregate_name"], "median");
   EXPECT_EQ(b[5]["aggregate_name"], "stddev");
-  EXPECT_NEAR(b[5]["real_time"].get<double>(), std::sqrt(8.0), 1e-12);  // sample stddev of {2.5, 6.5}
+  EXPECT_NEAR(b[5]["real_time"].get<double>(), 1000.0 * std::sqrt(8.0), 1e-9);  // sample stddev of {2.5, 6.5} ms
 
   std::string file = writeGoogleBenchmarkJson(dir);
   EXPECT_EQ(file, dir + "/gbench.json");

@@ -11,9 +11,11 @@
 #include <CLI/CLI.hpp>
 
 #include "camera/camera_path.h"
+#include "cli/list.h"
 #include "compare/commands.h"
 #include "error.h"
 #include "metrics/cracks.h"
+#include "number_text.h"
 #include "sweep/measure.h"
 #include "sweep/merge.h"
 #include "sweep/probe_command.h"
@@ -30,15 +32,7 @@
 using namespace lb;
 
 static int listSchemes() {
-  for (const Scheme* s : allSchemes()) {
-    const SchemeInfo& i = s->info();
-    std::printf("%-12s %s\n", i.name.c_str(), i.description.c_str());
-    std::printf("             seed: %s\n", i.seed.c_str());
-    std::printf("             patches: %s, partitioning: %s\n", topologyName(i.topology), partitioningName(i.partitioning));
-    for (auto& p : i.params)
-      std::printf("             %-10s default %-6g range [%g, %g]%s  %s\n", p.name.c_str(), p.defaultValue, p.min, p.max,
-                  p.integer ? " integer" : "", p.help.c_str());
-  }
+  std::fputs(schemeListing(allSchemes()).c_str(), stdout);
   return 0;
 }
 
@@ -153,6 +147,26 @@ static int renderCmd(const RenderArgs& a) {
   return ctx.validationErrors > 0 ? 3 : 0;
 }
 
+// CLI11's Range lets NaN through (every comparison with it is false) and prints its bounds with
+// std::to_string ("not in range 0.000000 to 1.000000"), hence this check for floating-point flags.
+static CLI::Validator finite(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& v) -> std::string {
+        double d = 0;
+        try {
+          size_t used = 0;
+          d = std::stod(v, &used);
+          if (used != v.size()) return "'" + printable(v) + "' is not a number";
+        } catch (const std::exception&) {
+          return "'" + printable(v) + "' is not a number";
+        }
+        if (!std::isfinite(d) || d < lo || d > hi)
+          return printable(v) + " is outside [" + numberText(lo) + ", " + numberText(hi) + "]";
+        return "";
+      },
+      "FINITE");
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"lodbench: compare GPU terrain level-of-detail schemes on one Vulkan tessellation renderer"};
   app.require_subcommand(1);
@@ -188,7 +202,7 @@ int main(int argc, char** argv) {
   double testSlowdown = 0;
   run->add_option("--test-slowdown", testSlowdown,
                   "Testing only: redraw this fraction of the patches inside the timed region (planted regression)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(finite(0, 1))
       ->group("Testing");
 
   auto* render = app.add_subcommand("render", "Render one frame of a camera path to PNG");
@@ -197,27 +211,6 @@ int main(int argc, char** argv) {
   render->add_option("--param", ra.params, "Scheme parameter name=value (repeatable)");
   render->add_option("--path", ra.path, "Camera path CSV")->required();
   render->add_option("--frame", ra.frame, "Frame index")->capture_default_str();
-  // CLI11's Range lets NaN through (every comparison with it is false), hence the explicit check.
-  auto finite = [](double lo, double hi) {
-    return CLI::Validator(
-        [lo, hi](std::string& v) -> std::string {
-          double d = 0;
-          try {
-            size_t used = 0;
-            d = std::stod(v, &used);
-            if (used != v.size()) return "'" + printable(v) + "' is not a number";
-          } catch (const std::exception&) {
-            return "'" + printable(v) + "' is not a number";
-          }
-          if (!std::isfinite(d) || d < lo || d > hi) {
-            char buf[160];
-            std::snprintf(buf, sizeof buf, "%s is outside [%g, %g]", printable(v).c_str(), lo, hi);
-            return buf;
-          }
-          return "";
-        },
-        "FINITE");
-  };
   render->add_option("--fps", ra.fps, "Path sampling rate (frames per second)")->capture_default_str()->check(finite(1, 1000));
   render->add_option("--out", ra.out, "Output PNG")->capture_default_str();
   render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
@@ -270,11 +263,11 @@ int main(int argc, char** argv) {
   VerdictFiles vf;
   for (CLI::App* sub : {compare, ab}) {
     sub->add_option("--threshold", co.threshold, "Timing regression when slower than 1 + threshold (and significant)")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
-    sub->add_option("--alpha", co.alpha, "Significance level of the Mann-Whitney test")
-        ->capture_default_str()->check(CLI::Range(1e-9, 0.5));
+        ->capture_default_str()->check(finite(0, HUGE_VAL));
+    sub->add_option("--alpha", co.alpha, "Significance level of the timing test (t-test on the rounds)")
+        ->capture_default_str()->check(finite(1e-9, 0.5));
     sub->add_option("--error-tolerance", co.errorTolerance, "Relative worsening of accuracy metrics allowed")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
+        ->capture_default_str()->check(finite(0, HUGE_VAL));
     sub->add_flag("--require-exact", co.requireExact,
                   "Counters that cannot be compared (other device or driver) are an error (exit 2), not a pass");
     sub->add_option("--json", vf.json, "Write the verdict as JSON");
@@ -355,8 +348,11 @@ int main(int argc, char** argv) {
       if (dryRun) {
         auto cases = shardCases(config, ro.shardIndex, ro.shardCount);
         for (auto& c : cases) std::printf("%s\n", c.id.c_str());
-        std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), ro.shardIndex, ro.shardCount,
-                     expandCases(config).size());
+        if (shard.empty())  // no shard asked: nothing to say about shards
+          std::fprintf(stderr, "lodbench: %zu cases\n", cases.size());
+        else
+          std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), ro.shardIndex, ro.shardCount,
+                       expandCases(config).size());
         return 0;
       }
       ro.progress = !quiet;

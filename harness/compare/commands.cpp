@@ -25,8 +25,7 @@ static int checked(F&& body) {
 static int report(const CompareReport& r, const VerdictFiles& files) {
   std::fputs(verdictMarkdown(r).c_str(), stdout);
   writeVerdict(r, files.json, files.md);
-  std::fprintf(stderr, "lodbench compare: %s: %d of %zu cases regressed, %d improved\n",
-               r.exitCode() ? "REGRESSION" : "clean", r.regressions(), r.cases.size(), r.improvements());
+  std::fprintf(stderr, "lodbench compare: %s; %d improved\n", verdictLine(r).c_str(), r.improvements());
   for (auto& n : r.notChecked) std::fprintf(stderr, "lodbench compare: NOT CHECKED: %s\n", n.c_str());
   return r.exitCode();
 }

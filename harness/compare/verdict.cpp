@@ -29,7 +29,42 @@ std::string ctxText(const json& ctx, const char* key) {
   return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : "?";
 }
 
+std::string limitText(const CompareOptions& o) { return num(1 + o.threshold, "%.3g") + "x"; }
+
 }  // namespace
+
+std::string timingWords(const TimingCheck& t, const CompareOptions& o) {
+  // A significant 1.56x slowdown under CI's 2x threshold used to read "unchanged" (issue 14): say
+  // what the test found, and that it stays within the threshold.
+  const bool significant = t.p < o.alpha;
+  switch (t.verdict) {
+    case TimingVerdict::Regression:
+      return "REGRESSION: slower beyond the threshold (" + limitText(o) + ")";
+    case TimingVerdict::Improvement:
+      return "improvement: faster beyond the threshold (1/" + limitText(o) + ")";
+    case TimingVerdict::Unchanged:
+      if (!significant) return "no significant change";
+      return std::string(t.ratio > 1 ? "slower" : "faster") + ", within the threshold (" + limitText(o) + ")";
+    default:
+      return "no timing verdict";
+  }
+}
+
+std::string verdictLine(const CompareReport& r) {
+  std::string line = r.exitCode() ? "REGRESSION in " + std::to_string(r.regressions()) + " of " +
+                                        std::to_string(r.cases.size()) + " cases"
+                                  : "no regression (" + std::to_string(r.cases.size()) + " cases)";
+  // The figure people look for first: the largest GPU time ratio (candidate / baseline).
+  const CaseComparison* worst = nullptr;
+  for (auto& c : r.cases)
+    if (c.timing.ratio > 0 && (!worst || c.timing.ratio > worst->timing.ratio)) worst = &c;
+  if (!worst) return line + "; no GPU time ratio";
+  const TimingCheck& t = worst->timing;
+  line += "; GPU time ratio " + num(t.ratio, "%.3g") + "x";
+  if (r.cases.size() > 1) line += " (largest, " + worst->id + ")";
+  if (t.verdict != TimingVerdict::NotChecked) line += ", p = " + num(t.p, "%.2g");
+  return line + ": " + timingWords(t, r.options);
+}
 
 json verdictJson(const CompareReport& r) {
   json cases = json::array();
@@ -43,6 +78,7 @@ json verdictJson(const CompareReport& r) {
                      {"worse", a.worse}});
     const TimingCheck& t = c.timing;
     json timing = {{"verdict", timingVerdictName(t.verdict)},
+                   {"verdict_text", timingWords(t, r.options)},
                    {"n_baseline", t.nBaseline},
                    {"n_candidate", t.nCandidate},
                    {"rounds_baseline", t.roundsBaseline},
@@ -76,6 +112,7 @@ json verdictJson(const CompareReport& r) {
       {"tool_version", LODBENCH_VERSION},
       {"time", isoTimeUtc()},
       {"verdict", r.exitCode() ? "regression" : "clean"},
+      {"summary", verdictLine(r)},
       {"exit_code", r.exitCode()},
       {"regressions", r.regressions()},
       {"improvements", r.improvements()},
@@ -97,11 +134,7 @@ json verdictJson(const CompareReport& r) {
 
 std::string verdictMarkdown(const CompareReport& r) {
   std::ostringstream m;
-  m << "# lodbench compare: "
-    << (r.exitCode()
-            ? "REGRESSION in " + std::to_string(r.regressions()) + " of " + std::to_string(r.cases.size()) + " cases"
-            : "no regression (" + std::to_string(r.cases.size()) + " cases)")
-    << "\n\n";
+  m << "# lodbench compare: " << verdictLine(r) << "\n\n";
   for (auto [label, dir, ctx] : {std::tuple{"Baseline", &r.baselineDir, &r.baselineContext},
                                  std::tuple{"Candidate", &r.candidateDir, &r.candidateContext}})
     m << "- " << label << ": `" << *dir << "` (commit " << ctxText(*ctx, "git_commit") << ", "
@@ -160,9 +193,9 @@ std::string verdictMarkdown(const CompareReport& r) {
         << " | NO VERDICT: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
       continue;
     }
-    m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f") << " ["
+    m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | **" << num(t.ratio, "%.3f") << "x** ["
       << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << rounds << " | "
-      << t.nBaseline << " / " << t.nCandidate << " | " << timingVerdictName(t.verdict) << " |\n";
+      << t.nBaseline << " / " << t.nCandidate << " | " << timingWords(t, r.options) << " |\n";
   }
 
   bool anyAccuracy = false;

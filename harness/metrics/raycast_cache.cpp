@@ -1,6 +1,7 @@
 #include "metrics/raycast_cache.h"
 
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -75,7 +76,9 @@ const RgbaImage& ReferenceCache::image(const Heightfield& terrain, const std::st
     }
   }
   // The ray cast works in the heightfield's own frame; the pose is in world space (terrain origin).
+  auto t0 = std::chrono::steady_clock::now();
   RgbaImage img = raycastImage(terrain, terrainLocalPose(pose, terrain), width, height);
+  rayCastSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++rayCasts_;
   if (!path.empty()) {
     std::filesystem::create_directories(dir_);

@@ -31,6 +31,7 @@ class ReferenceCache {
   SurplusMatcher surplus;  // errbound renderer for the surplus search, kept across the sweep's frames
   int rayCasts() const { return rayCasts_; }  // images made in this process
   int loaded() const { return loaded_; }      // images read back from the directory
+  double rayCastSeconds() const { return rayCastSeconds_; }  // wall time of those ray casts (progress ETA)
   // The file an image of this terrain, resolution and pose is kept in ("" without a directory).
   std::string file(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
                    const CameraPose& pose) const;
@@ -39,6 +40,7 @@ class ReferenceCache {
   std::string dir_;
   std::map<std::string, RgbaImage> images_;
   int rayCasts_ = 0, loaded_ = 0;
+  double rayCastSeconds_ = 0;
 };
 
 }  // namespace lb

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "number_text.h"
 #include "shaders/shared.h"
 
 namespace lb {
@@ -39,11 +40,9 @@ ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
       throw InputError("scheme '" + info.name + "' has no parameter '" + name + "' (parameters: " +
                        (known.empty() ? "none" : known) + ")");
     }
-    std::ostringstream range;
-    range << "[" << spec->min << ", " << spec->max << "]";
     if (!std::isfinite(value) || value < spec->min || value > spec->max)
-      throw InputError("scheme '" + info.name + "' parameter '" + name + "' = " + std::to_string(value) +
-                       " is outside " + range.str());
+      throw InputError("scheme '" + info.name + "' parameter '" + name + "' = " + numberText(value) + " is outside [" +
+                       numberText(spec->min) + ", " + numberText(spec->max) + "]");
     if (spec->integer && value != std::floor(value))
       throw InputError("scheme '" + info.name + "' parameter '" + name + "' must be an integer");
     out[name] = value;
@@ -55,10 +54,8 @@ void requireOrdered(const std::string& scheme, const ParamValues& values, const 
                     bool strict) {
   double a = values.at(lo), b = values.at(hi);
   if (strict ? a < b : a <= b) return;
-  std::ostringstream s;
-  s << "scheme '" << scheme << "': " << hi << " (" << b << ") must be " << (strict ? "greater than " : "at least ") << lo
-    << " (" << a << ")";
-  throw InputError(s.str());
+  throw InputError("scheme '" + scheme + "': " + hi + " (" + numberText(b) + ") must be " +
+                   (strict ? "greater than " : "at least ") + lo + " (" + numberText(a) + ")");
 }
 
 SchemeTexture redTexture(int width, int height, const std::vector<float>& red) {

@@ -10,6 +10,7 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
+#include "number_text.h"
 #include "results/case_identity.h"
 #include "terrain/generators.h"
 #include "schemes/registry.h"
@@ -43,9 +44,7 @@ struct Reader {
     if (!v.is_number()) fail(ptr, "expected a number, got " + printable(v.dump()));
     double d = v.get<double>();
     if (!std::isfinite(d) || d < lo || d > hi) {
-      std::ostringstream s;
-      s << d << " is outside [" << lo << ", " << hi << "]";
-      fail(ptr, s.str());
+      fail(ptr, numberText(d) + " is outside [" + numberText(lo) + ", " + numberText(hi) + "]");
     }
     return d;
   }
@@ -144,9 +143,8 @@ void requireRanges(const Reader& r, const SchemeInfo& info, const ParamValues& p
     auto lo = pv.find(p.name), up = pv.find(hi);
     if (lo == pv.end() || up == pv.end()) continue;
     if (!(lo->second < up->second)) {
-      std::ostringstream s;
-      s << info.name << ": " << p.name << " (" << lo->second << ") must be less than " << hi << " (" << up->second << ")";
-      r.fail(ptr, s.str());
+      r.fail(ptr, info.name + ": " + p.name + " (" + numberText(lo->second) + ") must be less than " + hi + " (" +
+                      numberText(up->second) + ")");
     }
   }
 }

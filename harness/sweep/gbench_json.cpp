@@ -23,6 +23,10 @@ using nlohmann::json;
 
 namespace {
 
+// Times are written in microseconds: compare.py prints them as whole numbers of the file's unit, so
+// a 0.78 ms frame in "ms" read "1" (issue 14).
+constexpr double kUsPerMs = 1000.0;
+
 std::string readLine(const std::string& file) {
   std::ifstream in(file);
   std::string s;
@@ -117,8 +121,8 @@ void addCounters(json& entry, const json& frames, size_t begin, size_t end, cons
       {"tes_invocations", "tes_invocations"},
       {"fragment_invocations", "fragment_invocations"}};
   for (auto& [name, key] : kFrameCounters) entry[name] = medianOf(frames, begin, end, key);
-  double gpu = entry["real_time"].get<double>();
-  entry["fps"] = gpu > 0 ? 1000.0 / gpu : 0.0;
+  double gpuUs = entry["real_time"].get<double>();
+  entry["fps"] = gpuUs > 0 ? 1e6 / gpuUs : 0.0;
   for (auto& [key, v] : summary.items()) {
     if (entry.contains(key) || key == "gpu_ms" || key == "cpu_ms" || key == "frames") continue;
     if (v.is_object() && v.contains("mean") && v["mean"].is_number())
@@ -146,7 +150,7 @@ json googleBenchmarkJson(const std::string& runDir) {
     json summary = cj.value("summary", json::object());
     json base = {{"name", id},       {"family_index", family++}, {"per_family_instance_index", 0},
                  {"run_name", id},   {"run_type", "iteration"},  {"threads", 1},
-                 {"time_unit", "ms"}};
+                 {"time_unit", "us"}};
     if (cj.value("status", "ok") != "ok" || frames.empty()) {
       json e = base;  // recorded with its reason, as Google Benchmark records a skipped run
       e.update({{"repetitions", 1},
@@ -168,8 +172,8 @@ json googleBenchmarkJson(const std::string& runDir) {
       entry.update({{"repetitions", n},
                     {"repetition_index", r},
                     {"iterations", per},
-                    {"real_time", medianOf(frames, b, e, "gpu_ms")},
-                    {"cpu_time", medianOf(frames, b, e, "cpu_ms")}});
+                    {"real_time", kUsPerMs * medianOf(frames, b, e, "gpu_ms")},
+                    {"cpu_time", kUsPerMs * medianOf(frames, b, e, "cpu_ms")}});
       addCounters(entry, frames, b, e, summary);
       real.push_back(entry["real_time"]);
       cpu.push_back(entry["cpu_time"]);

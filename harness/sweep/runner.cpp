@@ -20,6 +20,7 @@
 #include "schemes/registry.h"
 #include "results/run_dir.h"
 #include "sweep/gbench_json.h"
+#include "sweep/progress.h"
 #include "sweep/timing_passes.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -46,23 +47,15 @@ static double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-static void progressLine(bool progress, const char* what, int done, int total, double elapsed) {
-  // On a terminal the line updates in place; in logs, one line per tenth of the work.
-  bool tty = isatty(fileno(stderr));
-  if (!progress || !(tty ? done % 10 == 0 || done == total : done % std::max(1, total / 10) == 0)) return;
-  std::fprintf(stderr, "%s    %s %d/%d  %.1fs elapsed, ~%.0fs left%s", tty ? "\r" : "", what, done, total, elapsed,
-               elapsed / done * (total - done), tty ? "   " : "\n");
-  std::fflush(stderr);
-}
-
 // Reference images are kept per terrain: keyed by its contents, so two terrains sharing a label
 // (or a cache kept across runs) never lend each other images.
 static std::string referenceKey(const Case& c) {
   return c.terrainDigest.empty() ? c.terrainLabel : c.terrainLabel + "#" + c.terrainDigest.substr(0, 16);
 }
 
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
-                   ReferenceCache& refs) {
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
+                   SweepProgress* progress, ReferenceCache& refs) {
+  using Phase = SweepProgress::Phase;
   auto t0 = std::chrono::steady_clock::now();
   CaseResult result;
   const Scheme* scheme = findScheme(c.scheme);
@@ -84,6 +77,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };
 
+  if (progress) progress->phase(Phase::Timing);
   // Clock control: a fixed workload until its time is stable, so every case starts at a settled clock.
   std::unique_ptr<Calibrator> calibrator;
   CalibrationRun calibrationBefore;
@@ -105,7 +99,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p);
       for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
-      progressLine(progress, "frame", rep * frames + f + 1, total, secondsSince(t0));
+      if (progress) progress->frame(rep * frames + f + 1, total);
     }
   renderer.finish();
   for (auto& r : renderer.takeCompleted()) result.frames.push_back(r);
@@ -129,9 +123,9 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       if ((f < 0 ? frames + f : f) == frame) return true;
     return false;
   };
+  if (progress) progress->phase(Phase::Measure);
   if (ms.every > 0) {
     int count = (frames + ms.every - 1) / ms.every, done = 0;
-    auto tm = std::chrono::steady_clock::now();
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
       FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
@@ -142,9 +136,10 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       m.errorMap.clear();
       m.crackMask.clear();
       result.metrics.push_back(std::move(m));
-      progressLine(progress, "measured frame", ++done, count, secondsSince(tm));
+      if (progress) progress->frame(++done, count);
     }
   }
+  if (progress) progress->phase(Phase::Images);
 
   // Images for people are separate passes after the timed and measured frames, never inside them
   // (sweep/case_images.h): the configured frames and the worst measured ones.
@@ -229,10 +224,13 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     run["test_disabled_features"] = off;
   writeFileAtomic(runJson, run.dump(2));
 
-  auto t0 = std::chrono::steady_clock::now();
-  double runSeconds = 0;
-  int ran = 0;
+  std::vector<CaseWork> work = plannedWork(config, cases);
+  for (size_t i = 0; i < cases.size(); ++i)
+    if (plan.reuse.count(cases[i].id)) work[i] = CaseWork{cases[i].scheme, 0, 0, false};
   ReferenceCache refs(totals.dir + "/truth");  // ground-truth images persist for resume
+  SweepProgress progress(options.progress, work, [&refs] {
+    return SweepProgress::Truth{refs.rayCasts(), refs.rayCastSeconds()};
+  });
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
   for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
@@ -243,18 +241,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       totals.ok++;
       continue;
     }
-    if (options.progress) {
-      // Remaining time from the mean duration of the cases run so far in this invocation.
-      double left = ran ? runSeconds / ran * double(cases.size() - i) : 0;
-      std::string bar(20, '.');
-      std::fill(bar.begin(), bar.begin() + long(20 * i / cases.size()), '#');
-      std::fprintf(stderr, "[%s] %zu/%zu %s  (%.0fs elapsed%s)\n", bar.c_str(), i + 1, cases.size(), c.id.c_str(),
-                   secondsSince(t0), ran ? (", ~" + std::to_string(int(left)) + "s left").c_str() : "");
-    }
-    auto tc = std::chrono::steady_clock::now();
+    progress.startCase(i, c.id);
     CaseResult r;
     try {
-      r = runCase(ctx, c, config, totals.dir + "/images", options.progress, refs);
+      r = runCase(ctx, c, config, totals.dir + "/images", &progress, refs);
     } catch (const Interrupted&) {
       totals.interrupted = true;
       break;
@@ -270,8 +260,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
         createContext(ctx, {config.device, options.validation});
       }
     }
-    runSeconds += secondsSince(tc);
-    ++ran;
+    progress.endCase(r.status == "ok");
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
@@ -285,6 +274,18 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     writeAggregates(totals.dir, context);
   }
   run["end_time"] = isoTimeUtc();
+  // What each scheme's work cost in this invocation (the ETA's figures), to size configs by.
+  json costs = json::object();
+  double rayCast = progress.estimator().truthCost();
+  run["ray_cast_s_per_image"] = rayCast >= 0 ? json(rayCast) : json(nullptr);
+  for (auto& c : cases) {
+    EtaEstimator::Own o = progress.estimator().own(c.scheme);
+    auto val = [](double v) { return v >= 0 ? json(v) : json(nullptr); };
+    if (o.timing >= 0)
+      costs[c.scheme] = {{"timing_s_per_frame", val(o.timing)}, {"measured_s_per_frame", val(o.measured)},
+                         {"case_overhead_s", val(o.overhead)}};
+  }
+  run["costs"] = costs;
   run["interrupted"] = totals.interrupted;
   run["totals"] = {{"ok", totals.ok}, {"failed", totals.failed}, {"skipped", totals.skipped}, {"cases", cases.size()}};
   run["validation_errors"] = ctx.validationErrors.load();

@@ -12,6 +12,7 @@
 namespace lb {
 
 struct Context;
+class SweepProgress;
 
 struct RunOptions {
   std::string outDir;      // run directory; "" = results/<name>/<utc-time>
@@ -40,9 +41,9 @@ RunTotals runSweep(const Config& config, const RunOptions& options);
 std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount);
 // Parses "i/n" (0 <= i < n); throws InputError naming the flag.
 void parseShard(const std::string& text, int& index, int& count);
-// One case on an existing device context (used by tests and the sweep).
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir, bool progress,
-                   ReferenceCache& refs);
+// One case on an existing device context (used by tests and the sweep); progress may be null.
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
+                   SweepProgress* progress, ReferenceCache& refs);
 RenderMode parseRenderMode(const std::string& name);
 const char* renderModeName(RenderMode m);
 
