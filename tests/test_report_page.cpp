@@ -12,6 +12,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "render/image_io.h"
 #include "error.h"
 #include "metrics/cracks.h"
 #include "report/report.h"
@@ -194,9 +195,10 @@ TEST(ReportLegend, ColoursAreTheOnesThePaintingCodeUses) {
   }
   EXPECT_EQ(errorGrey(0), 0);
   EXPECT_EQ(errorGrey(8), 255);
-  RgbaImage none = errorImage({-1}, 1, 1);  // no terrain: the legend's magenta swatch
-  EXPECT_EQ(std::vector<uint8_t>(none.px.begin(), none.px.begin() + 3), (std::vector<uint8_t>{255, 0, 255}));
-  EXPECT_NE(legendHtml("error").find("#ff00ff"), std::string::npos);
+  RgbaImage none = errorImage({-1}, 1, 1);  // no terrain: the legend's sky swatch
+  EXPECT_EQ(std::vector<uint8_t>(none.px.begin(), none.px.begin() + 3),
+            (std::vector<uint8_t>{kSkyRgba[0], kSkyRgba[1], kSkyRgba[2]}));
+  EXPECT_NE(legendHtml("error").find("#c4d2e2"), std::string::npos);
   // The crack mask: red crack pixels, the rest dimmed to a third.
   RgbaImage frame{2, 1, {90, 120, 150, 255, 90, 120, 150, 255}};
   RgbaImage mask = crackMaskImage(frame, {1, 0});

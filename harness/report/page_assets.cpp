@@ -76,14 +76,8 @@ std::string pageAssetsHtml() {
 
 namespace lb {
 
-std::string pageSchemeColour(const ReportRun& run, const std::string& scheme) {
-  // Vega's tableau10 over chartSchemes(run), as schemeColor(run) asks the charts for today.
-  static const char* const kTableau10[] = {"#4c78a8", "#f58518", "#e45756", "#72b7b2", "#54a24b",
-                                           "#eeca3b", "#b279a2", "#ff9da6", "#9d755d", "#bab0ac"};
-  const std::vector<std::string> domain = chartSchemes(run);
-  auto it = std::find(domain.begin(), domain.end(), scheme);
-  if (it == domain.end()) return "#bbbbbb";  // no finished case: not in any chart
-  return kTableau10[size_t(it - domain.begin()) % 10];
+std::string pageSchemeColour(const ReportRun&, const std::string& scheme) {
+  return schemeColour(scheme);  // the charts' fixed table: one colour per scheme everywhere
 }
 
 Cell schemeCell(const ReportRun& run, const std::string& scheme) {

@@ -1,3 +1,4 @@
+#include "render/image_io.h"
 #include "report/report_images.h"
 
 #include <algorithm>
@@ -10,6 +11,13 @@
 #include "report/table.h"
 
 namespace lb {
+
+// The sky of images for people (render/image_io.h), as a CSS colour.
+static std::string skyHex() {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", kSkyRgba[0], kSkyRgba[1], kSkyRgba[2]);
+  return buf;
+}
 
 namespace {
 
@@ -50,7 +58,7 @@ std::string errorLegend() {
     int v = errorGrey(px[i]);
     g += (i ? "," : "") + hex(v, v, v) + " " + std::to_string(i * 25) + "%";
   }
-  return bar(g, {"0", "0.5", "2", "4.5", "≥ 8 px"}, "error (sqrt scale)") + swatch("#ff00ff", "no terrain") + "</div>";
+  return bar(g, {"0", "0.5", "2", "4.5", "≥ 8 px"}, "error (sqrt scale)") + swatch(skyHex(), "no terrain (sky)") + "</div>";
 }
 
 std::string crackLegend() {
@@ -141,7 +149,7 @@ std::pair<std::string, std::string> imageSection(const ReportRun& run, const std
       "image to enlarge it.";
   md += std::string(intro) +
         " Heat map and wireframe: tessellation level on a log2 scale, 1 blue, 8 green, 64 red. Error map: 0 px "
-        "black to 8 px and more white (sqrt scale), magenta where there is no terrain. Crack mask: red crack pixels "
+        "black to 8 px and more white (sqrt scale), the sky colour where there is no terrain. Crack mask: red crack pixels "
         "over the dimmed frame.\n\n";
   std::set<std::string> modes;
   for (auto& s : strips)
