@@ -83,13 +83,7 @@ void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
 // SRTM: no header; N x N big-endian int16 metres, first row = north edge, first column = west.
 // Orientation in lodbench: file row r becomes z = r and column c becomes x = c, so +x points east
 // and +z points south (north is at z = 0).
-Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
-  int n = 0;
-  for (int candidate : {1201, 3601})
-    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
-  if (n == 0)
-    throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
-                     " bytes is not 1201^2 or 3601^2 int16 samples");
+Heightfield decodeHgtSamples(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int n) {
   Heightfield hf = emptyField(spec, n, n);
   std::vector<char> known(hf.h.size(), 1);
   bool anyVoid = false, anyValid = false;
@@ -108,6 +102,16 @@ Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& b
   // ever isolated and the "minimum valid height" fallback is never needed.
   if (anyVoid) fillVoids(hf.h, known, n, n);
   return hf;
+}
+
+Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  int n = 0;
+  for (int candidate : {1201, 3601})
+    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
+  if (n == 0)
+    throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
+                     " bytes is not 1201^2 or 3601^2 int16 samples");
+  return decodeHgtSamples(spec, bytes, n);
 }
 
 // stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that
@@ -213,6 +217,16 @@ Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigne
     hf = loadRaw(spec, bytes, 4);
   else
     throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f)");
+  checkHeights(spec, hf);
+  hf.updateRange();
+  return hf;
+}
+
+Heightfield decodeHgtGrid(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int side) {
+  if (side < 2 || bytes.size() != size_t(side) * size_t(side) * 2)
+    throw InputError(spec.file + ": " + std::to_string(bytes.size()) + " bytes is not " + std::to_string(side) +
+                     "^2 int16 samples");
+  Heightfield hf = decodeHgtSamples(spec, bytes, side);
   checkHeights(spec, hf);
   hf.updateRange();
   return hf;
