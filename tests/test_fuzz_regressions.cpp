@@ -84,3 +84,12 @@ TEST(FuzzRegressions, HgtGridDecoderIsTheLoadersDecoder) {
   EXPECT_THROW(lb::decodeHgtGrid(s, small, 3), lb::InputError);
   EXPECT_THROW(lb::decodeHgtGrid(s, {0x80, 0x00, 0x80, 0x00, 0x80, 0x00, 0x80, 0x00}, 2), lb::InputError);
 }
+
+// stb_image probed the JPEG decoder on a non-PNG input and its Huffman table builder wrote past
+// its array (UBSan, png16 long run): only PNG is compiled in, and a file without the PNG
+// signature is refused before any decoder runs.
+TEST(FuzzRegressions, NonPngIsRefusedBeforeAnyDecoder) {
+  const char* name = "png16/jpeg-huffman-table-overflow-in-stb.bin";
+  const std::string msg = decodeError(pngSpec(name), readRegression(name));
+  EXPECT_NE(msg.find("cannot decode PNG (no PNG signature)"), std::string::npos) << msg;
+}

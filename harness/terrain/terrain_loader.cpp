@@ -12,6 +12,10 @@
 #include "terrain/heightfield.h"
 
 // The one stb_image implementation in the project (image_io.cpp owns stb_image_write's).
+// PNG only (the heightmaps here and the ray-cast cache's images): stb_image probes every format
+// it knows on any input, and its JPEG Huffman table builder writes past its array on a 72-byte
+// input (UBSan, found by the png16 fuzzer; tests/fuzz/regressions/png16).
+#define STBI_ONLY_PNG
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
@@ -118,14 +122,14 @@ Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& b
 // stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that
 // UBSan reports; found by fuzzing, tests/fuzz/regressions/png16). Such a chunk is legal but no
 // encoder writes one, so refuse the file rather than hand it to the decoder.
-// Returns the total length of the IDAT chunks (the compressed image), SIZE_MAX if not a PNG.
+// Returns the total length of the IDAT chunks (the compressed image).
 size_t rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
   auto be32 = [&](size_t at) {
     return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
   };
   size_t idat = 0;
-  // Other formats stb_image knows (16-bit PGM, PSD) go straight to the decoder as before.
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) != 0) return SIZE_MAX;
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) != 0)
+    throw InputError(spec.file + ": cannot decode PNG (no PNG signature)");
   for (size_t at = 8; at + 8 <= bytes.size();) {  // after the 8-byte signature: length, type, data, crc
     const uint32_t len = be32(at);
     const bool isIdat = std::memcmp(&bytes[at + 4], "IDAT", 4) == 0;
@@ -148,7 +152,7 @@ size_t rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>
 // file claiming 16385^2 samples took 3.5 s under ASan to fail (found by fuzzing).
 void rejectImpossibleSize(const TerrainSpec& spec, size_t idat, int w, int h) {
   const double raw = 2.0 * double(w) * double(h);  // 16-bit samples, less than the filtered stream
-  if (idat != SIZE_MAX && raw > 1032.0 * double(idat))
+  if (raw > 1032.0 * double(idat))
     throw InputError(spec.file + ": PNG header says " + std::to_string(w) + "x" + std::to_string(h) +
                      " but its compressed data (" + std::to_string(idat) + " bytes) cannot hold that many samples");
 }
