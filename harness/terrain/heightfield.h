@@ -52,6 +52,10 @@ Heightfield makeProcedural(const TerrainSpec& spec);
 Heightfield loadHeightfield(const TerrainSpec& spec);
 // The same from the file's bytes (spec.file only names it in messages); the fuzz targets call this.
 Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigned char>& bytes);
+// The .hgt decoder of decodeHeightfield (samples, voids and their fill, height checks) for a grid
+// of any side >= 2, where SRTM files are only 1201^2 or 3601^2: lets the hgt fuzz target
+// (tests/fuzz) explore the decoder with small inputs instead of 2.9 MB tiles.
+Heightfield decodeHgtGrid(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int side);
 // Dispatches on spec.type.
 Heightfield makeHeightfield(const TerrainSpec& spec);
 

@@ -1,5 +1,6 @@
 // Heightfield files: SRTM .hgt, 16-bit grayscale PNG, raw little-endian R16 / R32F.
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,10 @@
 #include "terrain/heightfield.h"
 
 // The one stb_image implementation in the project (image_io.cpp owns stb_image_write's).
+// PNG only (the heightmaps here and the ray-cast cache's images): stb_image probes every format
+// it knows on any input, and its JPEG Huffman table builder writes past its array on a 72-byte
+// input (UBSan, found by the png16 fuzzer; tests/fuzz/regressions/png16).
+#define STBI_ONLY_PNG
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
@@ -83,13 +88,7 @@ void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
 // SRTM: no header; N x N big-endian int16 metres, first row = north edge, first column = west.
 // Orientation in lodbench: file row r becomes z = r and column c becomes x = c, so +x points east
 // and +z points south (north is at z = 0).
-Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
-  int n = 0;
-  for (int candidate : {1201, 3601})
-    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
-  if (n == 0)
-    throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
-                     " bytes is not 1201^2 or 3601^2 int16 samples");
+Heightfield decodeHgtSamples(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int n) {
   Heightfield hf = emptyField(spec, n, n);
   std::vector<char> known(hf.h.size(), 1);
   bool anyVoid = false, anyValid = false;
@@ -110,24 +109,56 @@ Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& b
   return hf;
 }
 
+Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+  int n = 0;
+  for (int candidate : {1201, 3601})
+    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
+  if (n == 0)
+    throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
+                     " bytes is not 1201^2 or 3601^2 int16 samples");
+  return decodeHgtSamples(spec, bytes, n);
+}
+
 // stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that
 // UBSan reports; found by fuzzing, tests/fuzz/regressions/png16). Such a chunk is legal but no
 // encoder writes one, so refuse the file rather than hand it to the decoder.
-void rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
+// Returns the total length of the IDAT chunks (the compressed image).
+size_t rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
   auto be32 = [&](size_t at) {
     return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
   };
+  size_t idat = 0;
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) != 0)
+    throw InputError(spec.file + ": cannot decode PNG (no PNG signature)");
   for (size_t at = 8; at + 8 <= bytes.size();) {  // after the 8-byte signature: length, type, data, crc
     const uint32_t len = be32(at);
-    if (len == 0 && std::memcmp(&bytes[at + 4], "IDAT", 4) == 0)
+    const bool isIdat = std::memcmp(&bytes[at + 4], "IDAT", 4) == 0;
+    if (len == 0 && isIdat)
       throw InputError(spec.file + ": PNG has an empty IDAT chunk at byte " + std::to_string(at) + " (not supported)");
-    if (len > bytes.size()) break;  // the decoder reports the truncation
+    // The decoder would first allocate what a truncated chunk claims (a 72-byte file claiming a
+    // 1.3 GB IDAT timed out the fuzzer), so a chunk running past the end is refused here.
+    if (size_t(len) > bytes.size() - at - 8)
+      throw InputError(spec.file + ": PNG chunk at byte " + std::to_string(at) + " claims " + std::to_string(len) +
+                       " bytes, past the end of the file (" + std::to_string(bytes.size()) + " bytes)");
+    if (isIdat) idat += len;
+    if (std::memcmp(&bytes[at + 4], "IEND", 4) == 0) break;  // the decoder ignores what follows
     at += 12 + size_t(len);
   }
+  return idat;
+}
+
+// Deflate expands at most 1032:1 (a 258-byte match in 2 bits). A header asking for more image
+// data than its IDAT chunks can hold is refused before the decoder allocates for it: a 100-byte
+// file claiming 16385^2 samples took 3.5 s under ASan to fail (found by fuzzing).
+void rejectImpossibleSize(const TerrainSpec& spec, size_t idat, int w, int h) {
+  const double raw = 2.0 * double(w) * double(h);  // 16-bit samples, less than the filtered stream
+  if (raw > 1032.0 * double(idat))
+    throw InputError(spec.file + ": PNG header says " + std::to_string(w) + "x" + std::to_string(h) +
+                     " but its compressed data (" + std::to_string(idat) + " bytes) cannot hold that many samples");
 }
 
 Heightfield loadPng16(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
-  rejectEmptyIdat(spec, bytes);
+  const size_t idat = rejectEmptyIdat(spec, bytes);
   if (bytes.size() > size_t(INT32_MAX)) throw InputError(spec.file + ": file too large for a PNG heightmap");
   const int len = int(bytes.size());
   int w = 0, h = 0, comp = 0;
@@ -142,6 +173,7 @@ Heightfield loadPng16(const TerrainSpec& spec, const std::vector<unsigned char>&
   if (w > kMaxPngSide || h > kMaxPngSide)
     throw InputError(spec.file + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
                      std::to_string(kMaxPngSide) + " samples per side");
+  rejectImpossibleSize(spec, idat, w, h);
   stbi_us* pixels = stbi_load_16_from_memory(bytes.data(), len, &w, &h, &comp, 1);
   if (!pixels) throw InputError(spec.file + ": cannot decode PNG (" + std::string(stbi_failure_reason()) + ")");
   Heightfield hf = emptyField(spec, w, h);
@@ -213,6 +245,16 @@ Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigne
     hf = loadRaw(spec, bytes, 4);
   else
     throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f)");
+  checkHeights(spec, hf);
+  hf.updateRange();
+  return hf;
+}
+
+Heightfield decodeHgtGrid(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int side) {
+  if (side < 2 || bytes.size() != size_t(side) * size_t(side) * 2)
+    throw InputError(spec.file + ": " + std::to_string(bytes.size()) + " bytes is not " + std::to_string(side) +
+                     "^2 int16 samples");
+  Heightfield hf = decodeHgtSamples(spec, bytes, side);
   checkHeights(spec, hf);
   hf.updateRange();
   return hf;

@@ -8,7 +8,10 @@
 #include "error.h"
 #include "terrain/heightfield.h"
 
+extern size_t lbFuzzInputSize;  // fccp_buffer.cpp: how much of the CSV reader's buffer to open
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  lbFuzzInputSize = size;
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     lb::CameraPath path = lb::parseCameraPath(text, "fuzz.csv");
