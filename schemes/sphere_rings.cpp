@@ -106,6 +106,7 @@ PatchGeometry buildRings(const Heightfield& hf, const ParamValues& v, int grid, 
   // Offsets in vec2 units (the shader reads the buffer as vec2[]); every block has an even size.
   g.schemeBuffer.assign(kRingHeaderFloats, 0.0f);
   g.schemeBuffer[kRingMaxLevels] = float(kRingHeaderFloats / 2);
+  g.schemeUnits = true;  // lattice units: worldPoint() in the control shader adds the terrain origin
   g.schemeBuffer.insert(g.schemeBuffer.end(), records.begin(), records.end());
   if (!withBounds) return g;
   const double unit = double(hf.extent) / grid;
@@ -158,7 +159,8 @@ class SphereRings : public Scheme {
     const int grid = int(frame.terrain.y);
     glm::ivec2 k(0);
     if (grid > 0 && frame.terrain.x > 0)
-      k = ringCentre(glm::dvec2(frame.lodEye.x, frame.lodEye.z), frame.terrain.x, grid, ringCount(values, grid));
+      k = ringCentre(glm::dvec2(double(frame.lodEye.x) - frame.origin.x, double(frame.lodEye.z) - frame.origin.y),
+                     frame.terrain.x, grid, ringCount(values, grid));
     frame.params[LB_SPHERE_RINGS_CENTRE_X / 4][LB_SPHERE_RINGS_CENTRE_X % 4] = float(k.x);
     frame.params[LB_SPHERE_RINGS_CENTRE_Z / 4][LB_SPHERE_RINGS_CENTRE_Z % 4] = float(k.y);
   }

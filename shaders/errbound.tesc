@@ -54,7 +54,9 @@ int levelIndex(ivec2 g, out bool unmet, out float px) {
   vec3 c[8];
   float d[8];
   for (int k = 0; k < 8; ++k) {
-    c[k] = vec3(extent * float(g.x + (k & 1)) / float(n), (k & 2) != 0 ? hb.y : hb.x, extent * float(g.y + ((k >> 2) & 1)) / float(n));
+    // World position: the terrain's corner sits at frame.origin (far-origin scenario).
+    c[k] = vec3(frame.origin.x + extent * float(g.x + (k & 1)) / float(n), (k & 2) != 0 ? hb.y : hb.x,
+                frame.origin.y + extent * float(g.y + ((k >> 2) & 1)) / float(n));
     d[k] = viewDepth(c[k]);
   }
   mat4 vp = frame.lodProj * frame.lodView;

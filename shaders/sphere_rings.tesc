@@ -23,7 +23,7 @@ vec2 ringCentre() { return vec2(schemeParam(LB_SPHERE_RINGS_CENTRE_X), schemePar
 // A lattice point (integer-valued floats: exact) on the terrain. Every corner, own or
 // reconstructed, goes through this one function, so equal lattice points give equal bits.
 vec3 worldPoint(vec2 lattice) {
-  vec2 xz = (lattice + ringCentre()) * (frame.terrain.x / frame.terrain.y);
+  vec2 xz = (lattice + ringCentre()) * (frame.terrain.x / frame.terrain.y) + frame.origin.xy;
   return vec3(xz.x, terrainHeight(xz), xz.y);
 }
 

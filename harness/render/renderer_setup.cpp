@@ -103,7 +103,7 @@ void Renderer::createGrid() {
   }
   // Schemes lay patches out terrain-locally; the terrain's origin moves them into the world, in
   // double and then rounded to float, as an engine without camera-relative coordinates would.
-  if (terrain_.originX != 0.0 || terrain_.originZ != 0.0)
+  if ((terrain_.originX != 0.0 || terrain_.originZ != 0.0) && !g.schemeUnits)
     for (glm::vec2& v : g.vertices)
       v = glm::vec2(float(double(v.x) + terrain_.originX), float(double(v.y) + terrain_.originZ));
   patchCount_ = uint32_t(g.indices.size() / controlPoints_);

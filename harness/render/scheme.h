@@ -58,6 +58,9 @@ struct PatchGeometry {
   std::vector<uint32_t> indices;    // control points of every patch, patch after patch
   std::vector<glm::vec2> bounds;    // per patch (minHeight, maxHeight) for the control shader's culling
   std::vector<float> schemeBuffer;  // optional; bound at LB_BINDING_SCHEME_BUF as std430 floats
+  // Vertices in the scheme's own units, which its control shader maps to the world (adding the
+  // terrain origin itself): the renderer leaves them unshifted.
+  bool schemeUnits = false;
 };
 
 struct TextureSize {
