@@ -18,7 +18,7 @@ const page = await browser.newPage();
 await page.goto(pathToFileURL(path.join(reportDir, 'report.html')).href, {waitUntil: 'load'});
 await page.waitForTimeout(1500);  // vega views draw after load
 await page.screenshot({path: path.join(outDir, 'report-first-screen.png')});
-const strip = page.locator('div.strip').first();
+const strip = page.locator('.strip').first();
 await strip.scrollIntoViewIfNeeded();
 await strip.screenshot({path: path.join(outDir, 'report-image-strip.png')});
 await browser.close();
