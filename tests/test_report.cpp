@@ -18,6 +18,7 @@
 #include "report/charts.h"
 #include "report/pareto.h"
 #include "report/report.h"
+#include "report_fixture.h"
 #include "report/run_data.h"
 
 using namespace lb;
@@ -26,34 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kFixture = fs::path(LODBENCH_SOURCE_DIR) / "tests/data/report_run";
-
-json readJson(const fs::path& p) {
-  std::ifstream f(p);
-  return json::parse(f);
-}
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-// A writable copy of the fixture, so the report goes to its default place <run>/report.
-fs::path copyFixture(const std::string& name) {
-  fs::path d = fs::path(::testing::TempDir()) / name;
-  fs::remove_all(d);
-  fs::copy(kFixture, d, fs::copy_options::recursive);
-  return d;
-}
-
-ReportOutput writeNoHtml(const fs::path& run) {
-  ReportOptions o;
-  o.runDir = run.string();
-  o.html = false;
-  return writeReport(o);
-}
+using namespace lb::test;
 
 std::string tableRow(const std::string& md, const std::string& start) {
   size_t at = md.find("\n" + start);

@@ -16,6 +16,7 @@
 #include "error.h"
 #include "metrics/cracks.h"
 #include "report/report.h"
+#include "report_fixture.h"
 #include "report/report_answer.h"
 #include "report/report_images.h"
 #include "report/report_tables.h"
@@ -29,33 +30,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kFixture = fs::path(LODBENCH_SOURCE_DIR) / "tests/data/report_run";
-
-json readJson(const fs::path& p) {
-  std::ifstream f(p);
-  return json::parse(f);
-}
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-fs::path copyFixture(const std::string& name) {
-  fs::path d = fs::path(::testing::TempDir()) / name;
-  fs::remove_all(d);
-  fs::copy(kFixture, d, fs::copy_options::recursive);
-  return d;
-}
-
-void writeNoHtml(const fs::path& run) {
-  ReportOptions o;
-  o.runDir = run.string();
-  o.html = false;
-  writeReport(o);
-}
+using namespace lb::test;
 
 // Makes the fixture a scenario run: config name "scenario-..." and a description naming a metric.
 void makeScenario(const fs::path& run, const std::string& metric) {
