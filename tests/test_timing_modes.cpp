@@ -2,6 +2,7 @@
 // the minimal loop (probe), and clock-control calibration with a planted drift.
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -65,11 +66,12 @@ TEST(TimingModes, CounterMismatchIsNamed) {
   EXPECT_NE(compareTessellationCounters({a}, {}, "depth"), "");
 }
 
-class Probe : public lbtest::GpuTest, public ::testing::WithParamInterface<RenderMode> {};
+class Probe : public lbtest::GpuTest, public ::testing::WithParamInterface<std::tuple<RenderMode, bool>> {};
 
 // The minimal loop runs, times positive, and does exactly the tessellation work of lodbench's
-// uniform scheme at the same grid, level and camera.
+// uniform scheme at the same grid, level and camera; so does its vertex-height variant.
 TEST_P(Probe, MatchesUniformSchemeWork) {
+  const RenderMode mode = std::get<0>(GetParam());
   const int grid = 4, level = 5;
   auto pose = lbtest::overviewPose();
   ProbeOptions o;
@@ -77,7 +79,8 @@ TEST_P(Probe, MatchesUniformSchemeWork) {
   o.height = 64;
   o.grid = grid;
   o.level = level;
-  o.mode = GetParam();
+  o.mode = mode;
+  o.vertexHeight = std::get<1>(GetParam());
   o.warmup = 1;
   o.frames = 3;
   ProbeResult p = runProbe(gpu(), testTerrain(), pose, o);
@@ -86,19 +89,21 @@ TEST_P(Probe, MatchesUniformSchemeWork) {
   Renderer r(gpu(), testTerrain(), {96, 64, grid});
   r.setScheme(*findScheme("uniform"), {{"level", level}});
   auto same = [&](int) { return pose; };
-  auto l = replayInMode(r, GetParam(), 1, 1, 0, same);
+  auto l = replayInMode(r, mode, 1, 1, 0, same);
   ASSERT_EQ(l.size(), 1u);
   EXPECT_EQ(p.stats.tcsPatches, l[0].stats.tcsPatches);
   EXPECT_EQ(p.stats.tesInvocations, l[0].stats.tesInvocations);
   EXPECT_EQ(p.stats.tesInvocations, uint64_t(grid * grid * (level + 1) * (level + 1)));
-  if (GetParam() == RenderMode::Frontend) {
+  if (mode == RenderMode::Frontend) {
     EXPECT_EQ(p.stats.fsInvocations, 0u);
   }
-  if (GetParam() == RenderMode::Shaded) {
+  if (mode == RenderMode::Shaded) {
     EXPECT_GT(p.stats.fsInvocations, 0u);
   }
 }
-INSTANTIATE_TEST_SUITE_P(Modes, Probe, ::testing::Values(RenderMode::Shaded, RenderMode::Depth, RenderMode::Frontend));
+INSTANTIATE_TEST_SUITE_P(Modes, Probe,
+                         ::testing::Combine(::testing::Values(RenderMode::Shaded, RenderMode::Depth, RenderMode::Frontend),
+                                            ::testing::Bool()));
 
 TEST(Calibration, StableNeedsThreeRunsWithinTolerance) {
   EXPECT_FALSE(calibrationStable({1.0, 1.0}, 0.01));

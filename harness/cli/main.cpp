@@ -284,6 +284,8 @@ int main(int argc, char** argv) {
   probe->add_option("--device", po.device, "Vulkan device: name substring or index (overrides the config)");
   probe->add_option("--levels", po.levels, "Uniform levels (default: the first scheme's level, else 1)")->delimiter(',');
   probe->add_option("--modes", po.modes, "Timing modes (default: the config's \"timing\")")->delimiter(',');
+  probe->add_flag("--vertex-height", po.vertexHeight,
+                  "Attribution variant: the minimal loop's vertex shader fetches control-point heights as lodbench's does");
   probe->add_option("--frames", po.frames, "Timed frames per row (median)")->capture_default_str()->check(CLI::Range(1, 100000));
   probe->add_option("--warmup", po.warmup, "Unrecorded frames before each row")->capture_default_str()->check(CLI::Range(0, 100000));
   probe->add_option("--frame", po.frame, "Camera: this frame of the config's first path")->capture_default_str()->check(CLI::NonNegativeNumber);

@@ -57,8 +57,9 @@ struct ProbeObjects {
 
 void createPipeline(ProbeObjects& o, const ProbeOptions& opt) {
   const bool colour = opt.mode == RenderMode::Shaded, frontend = opt.mode == RenderMode::Frontend;
-  VkShaderModule mods[4] = {loadShaderModule(o.ctx, "probe.vert.spv"), loadShaderModule(o.ctx, "probe.tesc.spv"),
-                            loadShaderModule(o.ctx, "probe_integer.tese.spv"),
+  const std::string stem = opt.vertexHeight ? "probe_height" : "probe";
+  VkShaderModule mods[4] = {loadShaderModule(o.ctx, stem + ".vert.spv"), loadShaderModule(o.ctx, stem + ".tesc.spv"),
+                            loadShaderModule(o.ctx, stem + "_integer.tese.spv"),
                             colour ? loadShaderModule(o.ctx, "probe.frag.spv") : VK_NULL_HANDLE};
   VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
                                    VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, VK_SHADER_STAGE_FRAGMENT_BIT};

@@ -23,6 +23,9 @@ struct ProbeOptions {
   // Split draws like the renderer (kMaxVerticesPerDraw / kMaxIndicesPerDraw); needed on lavapipe,
   // whose tessellator indices are 16-bit. Elsewhere the probe draws every patch in one call.
   bool split = true;
+  // Attribution variant: the vertex shader fetches each control point's height and the control
+  // points travel as vec3, as in lodbench's terrain.vert (its LOD decisions need the heights).
+  bool vertexHeight = false;
 };
 
 struct ProbeResult {

@@ -87,9 +87,11 @@ int probeCommand(const ProbeCommandOptions& o) {
         po.warmup = o.warmup;
         po.frames = o.frames;
         po.split = split;
+        po.vertexHeight = o.vertexHeight;
         ProbeResult p = runProbe(ctx, terrain, pose, po);
         row["minimal_ms"] = p.medianMs;
         row["minimal_draws"] = p.draws;
+        if (o.vertexHeight) row["minimal_variant"] = "vertex-height";
         row["frames"] = o.frames;
         row["tes_invocations"] = p.stats.tesInvocations;
         row["triangles"] = p.stats.clipInvocations;
