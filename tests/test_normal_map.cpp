@@ -146,15 +146,31 @@ void expectSameStats(const PipelineStats& a, const PipelineStats& b, const std::
   EXPECT_GT(a.fsInvocations, 0u) << what << ": nothing drawn proves nothing";
 }
 
-// Renders `pose` with the old and the new shader (uniform at its defaults), asserts the tolerance
-// and identical counters and triangle histograms; writes old/new/difference x32 PNGs to
-// $LODBENCH_NORMAL_MAP_PNGS/<tag>_*.png when that names a directory.
-Diff compareOldNew(const Heightfield& hf, const CameraPose& pose, int w, int h, int grid, const std::string& tag) {
-  RenderSettings oldSettings{w, h, grid};
-  oldSettings.testHeightNormals = true;
-  Renderer oldR(lbtest::gpu(), hf, oldSettings), newR(lbtest::gpu(), hf, {w, h, grid});
-  oldR.setScheme(*findScheme("uniform"), {});
-  newR.setScheme(*findScheme("uniform"), {});
+// The old shader (per-pixel normals from four height lookups) and the new one, uniform at its
+// defaults. Made once per terrain and reused across frames: the per-terrain set-up (normal map,
+// patch bounds) dominates this test under ASan.
+struct OldNew {
+  Renderer oldR, newR;
+  int w, h;
+  OldNew(const Heightfield& hf, int width, int height, int grid)
+      : oldR(lbtest::gpu(), hf, oldSettings(width, height, grid)), newR(lbtest::gpu(), hf, {width, height, grid}),
+        w(width), h(height) {
+    oldR.setScheme(*findScheme("uniform"), {});
+    newR.setScheme(*findScheme("uniform"), {});
+  }
+  static RenderSettings oldSettings(int width, int height, int grid) {
+    RenderSettings s{width, height, grid};
+    s.testHeightNormals = true;
+    return s;
+  }
+};
+
+// Renders `pose` with the old and the new shader, asserts the tolerance and identical counters and
+// triangle histograms; writes old/new/difference x32 PNGs to $LODBENCH_NORMAL_MAP_PNGS/<tag>_*.png
+// when that names a directory.
+Diff compareOldNew(OldNew& r, const CameraPose& pose, const std::string& tag) {
+  Renderer &oldR = r.oldR, &newR = r.newR;
+  const int w = r.w, h = r.h;
   FrameResult fo, fn;
   RgbaImage o{w, h, oldR.renderImage(pose, pose, RenderMode::Shaded, &fo)};
   RgbaImage n{w, h, newR.renderImage(pose, pose, RenderMode::Shaded, &fn)};
@@ -187,9 +203,10 @@ TEST_P(NormalMapPaths, NewShadingWithinToleranceOfPerPixelNormalsWithIdenticalCo
   const Heightfield hf = quickTerrain();
   const char* name = GetParam();
   CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/" + name + ".csv");
+  OldNew r(hf, 320, 180, 32);
   int frames = 0;
   for (int f = 0; f < frameCount(path, 30); f += 90, ++frames)
-    compareOldNew(hf, samplePose(path, 30, f, hf), 320, 180, 32, std::string(name) + "_" + std::to_string(f));
+    compareOldNew(r, samplePose(path, 30, f, hf), std::string(name) + "_" + std::to_string(f));
   EXPECT_GE(frames, 3);
 }
 
@@ -202,7 +219,10 @@ class NormalMapFrames : public lbtest::GpuTest {};
 TEST_F(NormalMapFrames, FlyoverAndDemAt640x360) {
   const Heightfield hf = quickTerrain();
   CameraPath flyover = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/flyover.csv");
-  compareOldNew(hf, samplePose(flyover, 30, 240, hf), 640, 360, 32, "flyover_240");
+  {
+    OldNew r(hf, 640, 360, 32);
+    compareOldNew(r, samplePose(flyover, 30, 240, hf), "flyover_240");
+  }
   const std::string file = std::string(LODBENCH_SOURCE_DIR) + "/../shared/data/N44W072.hgt";
   if (!std::filesystem::exists(file)) {
     const char* allow = std::getenv("LODBENCH_ALLOW_NO_DEM");
@@ -218,5 +238,6 @@ TEST_F(NormalMapFrames, FlyoverAndDemAt640x360) {
   s.extent = 108000;
   s.heightScale = 5;
   const Heightfield dem = loadHeightfield(s);
-  compareOldNew(dem, samplePose(flyover, 30, 240, dem), 640, 360, 32, "dem_flyover_240");
+  OldNew r(dem, 640, 360, 32);
+  compareOldNew(r, samplePose(flyover, 30, 240, dem), "dem_flyover_240");
 }
