@@ -2,6 +2,9 @@
 #include <cmath>
 
 #include "gpu_fixture.h"
+#include "sweep/config.h"
+#include "sweep/measure.h"
+#include "sweep/results.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -68,4 +71,35 @@ TEST_F(Measurement, ErrorMapIsZeroForReferenceDenseAndLargerWhenCoarse) {
   double coarse = meanError(1), fine = meanError(8);
   EXPECT_GT(coarse, fine * 2);
   EXPECT_GT(coarse, 0.5);
+}
+
+// A frame with nothing on screen (camera looking up into the sky) has no error and no triangle
+// sizes: they are null with a reason in the frame record and the summary, never 0 or silently absent.
+TEST_F(Measurement, NothingOnScreenGivesNullWithAReason) {
+  Renderer r(gpu(), testTerrain(), {160, 90, 16});
+  r.setScheme(*findScheme("uniform"), {});
+  MeasureSpec spec;
+  spec.every = 1;
+  spec.passes = {"error", "histogram"};
+  ReferenceCache refs;
+  const CameraPose sky = lbtest::poseAt({500, 400, 500}, {500, 2000, 3000});
+  const CameraPose ground = lbtest::overviewPose();
+  FrameMetrics m = measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 0, sky, sky);
+  ASSERT_TRUE(m.hasHistogram);
+  EXPECT_EQ(m.histogram.total(), m.histogram.offscreen + m.histogram.backfacing) << "premise: nothing on screen";
+  EXPECT_NE(m.unavailable.at("error").find("no terrain pixel"), std::string::npos);
+  EXPECT_NE(m.unavailable.at("triangle_sizes").find("no front-facing triangle"), std::string::npos);
+  FrameMetrics g = measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 1,
+                                ground, ground);
+  EXPECT_TRUE(g.unavailable.empty()) << "a frame with terrain on screen has every value";
+  CaseResult cr;
+  for (int f : {0, 1}) cr.frames.push_back(FrameResult{f, 1.0, 1.0, {}});
+  cr.metrics = {m, g};
+  nlohmann::json cj = caseJson(Case{}, cr);
+  EXPECT_TRUE(cj["frames"][0]["err_mean_px"].is_null());
+  EXPECT_TRUE(cj["frames"][0]["tri_area_mean"].is_null());
+  EXPECT_TRUE(cj["frames"][0]["unavailable"].contains("error"));
+  EXPECT_FALSE(cj["frames"][1].contains("unavailable"));
+  EXPECT_GT(cj["frames"][1]["err_mean_px"].get<double>(), 0.0);
+  EXPECT_TRUE(caseSummary(cr)["unavailable"].contains("error"));
 }

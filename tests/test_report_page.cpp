@@ -293,3 +293,41 @@ TEST(ReportScenario, DifferenceScenariosScoreEachRowAgainstTheControlRow) {
   EXPECT_EQ(rows[1].second[0].md, "4 [1.00]");
   EXPECT_EQ(rows[1].second[1].md, "2.5 [0.00]");
 }
+
+// Each row says what it showed: worst and best case, or that the predicted failure did not appear
+// when every case reads the same (e.g. no scheme cracks where a seed predicts cracks).
+TEST(ReportScenario, OutcomesNameTheWorstCaseOrSayTheFailureDidNotAppear) {
+  ReportRun run;
+  run.name = "scenario-outcome";
+  run.context = {{"config", {{"description", "Cracks. Shows in cracks_pixels."}}}};
+  run.scenarios = {"calm", "rough"};
+  const std::vector<std::tuple<std::string, std::string, double>> values{
+      {"u", "calm", 0}, {"s", "calm", 0}, {"u", "rough", 7}, {"s", "rough", 2}};
+  for (auto& [label, scenario, v] : values) {
+    ReportCase c;
+    c.id = label + "_" + scenario;
+    c.label = c.scheme = label;
+    c.scenario = scenario;
+    c.status = "ok";
+    c.frames = json::array({{{"frame", 0}, {"cracks_pixels", v}}});
+    run.cases.push_back(c);
+  }
+  auto o = scenarioOutcomes(run, "cracks_pixels");
+  ASSERT_EQ(o.size(), 2u);
+  EXPECT_EQ(o[0], "calm: every case reads 0 on cracks_pixels: the predicted failure did not appear here.");
+  EXPECT_EQ(o[1], "rough: worst u (7), best s (2) on cracks_pixels.");
+  // Higher-is-better metrics: the worst is the lowest.
+  for (auto& c : run.cases) c.frames[0]["img_psnr_db"] = c.frames[0]["cracks_pixels"];
+  o = scenarioOutcomes(run, "img_psnr_db");
+  EXPECT_EQ(o[1], "rough: worst s (2), best u (7) on img_psnr_db.");
+  // Difference scenarios: scored on the size of the difference from the control, which is left out.
+  run.context["config"]["description"] = "Far. Shows in the difference from the at-origin case: err_mean_px.";
+  run.scenarios = {"p", "p-at9"};
+  for (auto& c : run.cases) {
+    c.scenario = c.scenario == "calm" ? "p" : "p-at9";
+    c.frames[0]["err_mean_px"] = c.frames[0]["cracks_pixels"];
+  }
+  o = scenarioOutcomes(run, "err_mean_px");
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_EQ(o[0], "p-at9: worst u (+7), best s (+2) on err_mean_px minus the control's.");
+}

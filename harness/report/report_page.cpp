@@ -94,6 +94,7 @@ void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref
   }
   w.para("Summary grid, " + metric + " by scenario and scheme. " + scenarioGridRule(metric));
   w.table(scenarioGrid(run, metric), "grid", true);
+  for (const std::string& o : scenarioOutcomes(run, metric)) w.para("Observed, " + o);
   w.para("One row per case: " + metric + " over its measured frames, the frame where it is worst, and that frame's "
          "images.");
   w.table(scenarioTable(run, metric, runHref), "scenario", true);

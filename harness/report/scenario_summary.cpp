@@ -85,9 +85,14 @@ ReportOutput writeScenarioSummary(const ReportOptions& options) {
         for (Cell& cell : cells) row.push_back(std::move(cell));
       grid.rows.push_back(std::move(row));
     }
-    mdList += "- **" + name + "** ([report](" + rel + "/report.md)): " + description + "\n";
+    std::string observed;
+    if (!metric.empty())
+      for (const std::string& o : scenarioOutcomes(*run, metric)) observed += (observed.empty() ? "" : " ") + o;
+    if (!observed.empty()) observed = " Observed: " + observed;
+    mdList += "- **" + name + "** ([report](" + rel + "/report.md)): " + description + observed + "\n";
     list += "<li id=\"about-" + htmlEscape(name) + "\"><b>" + htmlEscape(name) + "</b> (<a href=\"" +
-            htmlEscape(rel + "/report.html") + "\">report</a>): " + htmlEscape(description) + "</li>\n";
+            htmlEscape(rel + "/report.html") + "\">report</a>): " + htmlEscape(description) +
+            (observed.empty() ? "" : "<br><i>" + htmlEscape(observed.substr(1)) + "</i>") + "</li>\n";
   }
   const std::string title = "lodbench scenarios: " + fs::absolute(root).lexically_normal().filename().string();
   const std::string intro = std::to_string(all.size()) + " scenario runs in " + options.runDir + "; report written " +

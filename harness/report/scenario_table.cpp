@@ -194,6 +194,48 @@ std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun&
   return rows;
 }
 
+std::vector<std::string> scenarioOutcomes(const ReportRun& run, const std::string& metric) {
+  const std::string controlRow = controlScenario(run);
+  std::map<std::string, double> control;
+  for (const ReportCase& c : run.cases)
+    if (!controlRow.empty() && c.scenario == controlRow && c.status == "ok")
+      if (auto v = caseMetric(c, metric).mean) control[c.label] = *v;
+  const bool up = higherIsBetter(metric) && controlRow.empty();
+  std::vector<std::string> out;
+  for (const std::string& scenario : run.scenarios) {
+    if (!controlRow.empty() && scenario == controlRow) continue;
+    std::vector<std::pair<std::string, double>> values;  // label, value (difference from the control)
+    for (const ReportCase& c : run.cases) {
+      if (c.scenario != scenario || c.status != "ok") continue;
+      std::optional<double> v = caseMetric(c, metric).mean;
+      if (v && !controlRow.empty()) {
+        auto ctl = control.find(c.label);
+        v = ctl == control.end() ? std::nullopt : std::optional<double>(*v - ctl->second);
+      }
+      if (v) values.emplace_back(c.label, *v);
+    }
+    const std::string what = controlRow.empty() ? metric : metric + " minus the control's";
+    std::string line = scenario + ": ";
+    if (values.empty()) {
+      out.push_back(line + "no finished case has " + metric + ".");
+      continue;
+    }
+    auto score = [&](double v) { return controlRow.empty() ? (up ? -v : v) : std::fabs(v); };
+    auto shown = [&](double v) { return (!controlRow.empty() && v > 0 ? "+" : "") + formatValue(v); };
+    auto [lo, hi] = std::minmax_element(values.begin(), values.end(),
+                                        [&](auto& a, auto& b) { return score(a.second) < score(b.second); });
+    const double span = std::fabs(hi->second - lo->second), scale = std::max(1.0, std::fabs(hi->second));
+    if (span <= 1e-9 * scale)
+      line += "every case reads " + shown(values[0].second) + " on " + what +
+              ": the predicted failure did not appear here.";
+    else
+      line += "worst " + hi->first + " (" + shown(hi->second) + "), best " + lo->first + " (" + shown(lo->second) +
+              ") on " + what + ".";
+    out.push_back(line);
+  }
+  return out;
+}
+
 Table scenarioGrid(const ReportRun& run, const std::string& metric) {
   const std::vector<std::string> columns = gridColumns({&run});
   Table t{{"scenario"}, {}, {false}};

@@ -39,6 +39,10 @@ std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun&
 // The control row of a scenario whose description says it shows in "the difference from the ..."
 // case (far-origin): the scenario whose label begins every other one's; "" for other scenarios.
 std::string controlScenario(const ReportRun& run);
+// What each (non-control) row of the grid shows, in one sentence per row: the worst and the best
+// case on `metric`, or, where every case reads the same, that the predicted failure did not appear
+// there (a scenario that provokes nothing is reported, not hidden).
+std::vector<std::string> scenarioOutcomes(const ReportRun& run, const std::string& metric);
 // Per case: mean and max of `metric` over the measured frames, the worst frame, links to its images.
 Table scenarioTable(const ReportRun& run, const std::string& metric, const std::string& runHref);
 std::string scenarioRowId(const std::string& caseId);

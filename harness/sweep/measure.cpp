@@ -88,6 +88,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("tri_area_median", hs.medianArea);
     set("tri_frac_under_1px", hs.fracUnder1px);
     set("tri_frac_near_target", hs.fracNearTarget);
+    if (h.total() == h.offscreen + h.backfacing)
+      m.unavailable["triangle_sizes"] = "no front-facing triangle on screen: tri_area_* and tri_frac_* are undefined";
   }
   if (spec.on("error")) {
     m.errorMap = r.renderErrorMap(current, current);
@@ -95,6 +97,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     for (float v : m.errorMap)
       if (v >= 0) e.push_back(v);
     Summary s = summarize(e);
+    if (e.empty()) m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
