@@ -126,6 +126,12 @@ std::vector<Row> rows() {
        {"c.json:6", "'/terrain/file'", "sample (1, 1)", "+-1e5"}},
       {"hgt_wrong_size", {{"t.hgt", std::string(100, '\0')}, {"c.json", cfgTerrain("{\"type\": \"hgt\", \"file\": \"t.hgt\"}")}},
        kRun, {"c.json:6", "'/terrain/file'", "t.hgt: size 100 bytes"}},
+      // Past lavapipe's maxImageDimension2D (16384): refused from the spec, before generating it.
+      {"terrain_past_device_limit", {{"c.json", cfgTerrain("{\"type\": \"procedural\", \"size\": 16385}")}},
+       "run ${D}/c.json --out ${D}/new --quiet",
+       {"terrain 'proc16385s1'", "16385 x 16385 samples", "maxImageDimension2D", "a 'size' of at most"}},
+      {"render_terrain_past_device_limit", {}, kRender + kPathArg + "--size 16385",
+       {"16385 x 16385 samples", "maxImageDimension2D"}},
       {"png16_not_png", {{"t.png", "not a png"}, {"c.json", cfgTerrain("{\"type\": \"png16\", \"file\": \"t.png\"}")}}, kRun,
        {"c.json:6", "'/terrain/file'", "t.png: cannot decode PNG"}},
       {"procedural_height_scale", {{"c.json", cfgTerrain("{\"type\": \"procedural\", \"height_scale\": 1e6}")}}, kRun,

@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "dem_crop.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "render/image_io.h"
@@ -215,7 +216,7 @@ INSTANTIATE_TEST_SUITE_P(ShippedPaths, NormalMapPaths, ::testing::Values("flyove
 class NormalMapFrames : public lbtest::GpuTest {};
 
 // The frames docs/ shows (640x360): flyover frame 240 over quick.json's terrain, and the SRTM tile
-// N44W072 (as tests/test_scale.cpp loads it: absent is a failure unless LODBENCH_ALLOW_NO_DEM=1).
+// N44W072 (the committed crop, tests/dem_crop.h).
 TEST_F(NormalMapFrames, FlyoverAndDemAt640x360) {
   const Heightfield hf = quickTerrain();
   CameraPath flyover = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/flyover.csv");
@@ -223,21 +224,7 @@ TEST_F(NormalMapFrames, FlyoverAndDemAt640x360) {
     OldNew r(hf, 640, 360, 32);
     compareOldNew(r, samplePose(flyover, 30, 240, hf), "flyover_240");
   }
-  const std::string file = std::string(LODBENCH_SOURCE_DIR) + "/../shared/data/N44W072.hgt";
-  if (!std::filesystem::exists(file)) {
-    const char* allow = std::getenv("LODBENCH_ALLOW_NO_DEM");
-    if (allow && std::string(allow) == "1") {
-      std::printf("[normal map] LODBENCH_ALLOW_NO_DEM=1 and %s is absent: DEM not checked\n", file.c_str());
-      return;
-    }
-    FAIL() << file << " is missing (set LODBENCH_ALLOW_NO_DEM=1 to accept its absence)";
-  }
-  TerrainSpec s;
-  s.type = "hgt";
-  s.file = file;
-  s.extent = 108000;
-  s.heightScale = 5;
-  const Heightfield dem = loadHeightfield(s);
+  const Heightfield dem = loadHeightfield(lbtest::demCrop());
   OldNew r(dem, 640, 360, 32);
   compareOldNew(r, samplePose(flyover, 30, 240, dem), "dem_flyover_240");
 }

@@ -12,6 +12,7 @@
 #include <map>
 #include <string>
 
+#include "dem_crop.h"
 #include "gpu_fixture.h"
 
 using namespace lb;
@@ -101,18 +102,9 @@ INSTANTIATE_TEST_SUITE_P(Registry, ScaleFree, ::testing::ValuesIn([] {
 
 namespace {
 
-// ../shared/data/N44W072.hgt next to the project; absent: a failure unless explicitly allowed.
+// The committed SRTM crop (tests/dem_crop.h), loaded once.
 const Heightfield* realDem() {
-  static const Heightfield* hf = []() -> const Heightfield* {
-    const std::string file = std::string(LODBENCH_SOURCE_DIR) + "/../shared/data/N44W072.hgt";
-    if (!std::filesystem::exists(file)) return nullptr;
-    TerrainSpec s;
-    s.type = "hgt";
-    s.file = file;
-    s.extent = 108000;
-    s.heightScale = 5;
-    return new Heightfield(loadHeightfield(s));
-  }();
+  static const Heightfield* hf = new Heightfield(loadHeightfield(lbtest::demCrop()));
   return hf;
 }
 
@@ -122,20 +114,11 @@ class RealDem : public lbtest::GpuTest {};
 
 }  // namespace
 
-// Extent 108000, height_scale 5: with world-unit distances every patch sat at min_lod and the
+// The SRTM crop at 90 m spacing, height_scale 5 (the full tile at extent 108000 before): with world-unit distances every patch sat at min_lod and the
 // three distance schemes drew the same triangles. At their defaults each now draws within 10x of
 // sphere's screen-space LOD either way, and no two schemes give the same per-frame counters.
 TEST_F(RealDem, DistanceSchemesStayWithinTenfoldOfSphereAndDiffer) {
   const Heightfield* hf = realDem();
-  if (!hf) {
-    const char* allow = std::getenv("LODBENCH_ALLOW_NO_DEM");
-    if (allow && std::string(allow) == "1") {
-      std::printf("[RealDem] LODBENCH_ALLOW_NO_DEM=1 and ../shared/data/N44W072.hgt is absent: not checked\n");
-      return;
-    }
-    FAIL() << LODBENCH_SOURCE_DIR "/../shared/data/N44W072.hgt is missing: this test needs the SRTM tile "
-           << "(set LODBENCH_ALLOW_NO_DEM=1 to accept its absence)";
-  }
   const RenderSettings rs{kDemWidth, kDemHeight, 32};
   const char* names[] = {"sphere", "distance", "interlock", "planefit"};
   for (const char* path : {"flyover", "lowalt"}) {

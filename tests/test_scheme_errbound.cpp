@@ -10,6 +10,7 @@
 #include <fstream>
 #include <random>
 
+#include "dem_crop.h"
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"
 #include "metrics/image_metrics.h"
@@ -156,26 +157,16 @@ TEST_F(ErrboundScheme, KeepsItsBoundOnEveryShippedPath) {
 }
 
 TEST_F(ErrboundScheme, KeepsItsBoundOnTheRealDem) {
-  TerrainSpec s;
-  s.type = "hgt";
-  s.file = std::string(LODBENCH_SOURCE_DIR) + "/../shared/data/N44W072.hgt";
-  s.extent = 108000;
-  s.heightScale = 5;
-  if (!std::ifstream(s.file).good()) {
-    const char* allow = std::getenv("LODBENCH_ALLOW_NO_DEM");
-    if (allow && std::string(allow) == "1") GTEST_SKIP() << s.file << " absent (LODBENCH_ALLOW_NO_DEM=1)";
-    FAIL() << s.file << " is absent: errbound's promise on the real DEM cannot be checked (set LODBENCH_ALLOW_NO_DEM=1 "
-                        "to skip)";
-  }
+  const TerrainSpec s = lbtest::demCrop();
   const Heightfield hf = makeHeightfield(s);
   Renderer r(gpu(), hf, {160, 90, 32});  // grid 32: a quarter of grid 64's load-time triangles (test time)
   r.setScheme(*findScheme("errbound"), {});
   int unmet = 0;
   for (const char* path : kPaths) {
     std::vector<CameraPose> poses = pathPoses(path, hf, 80);
-    for (double bound : {0.5, 1.0, 2.0, 4.0}) unmet += checkBound(r, poses, bound, std::string("N44W072 ") + path);
+    for (double bound : {0.5, 1.0, 2.0, 4.0}) unmet += checkBound(r, poses, bound, std::string("N44W072 crop ") + path);
   }
-  std::printf("[errbound] N44W072: %d frame x bound combinations excluded as unmet\n", unmet);
+  std::printf("[errbound] N44W072 crop: %d frame x bound combinations excluded as unmet\n", unmet);
 }
 
 TEST_F(ErrboundScheme, FlatTerrainIsLevelOneAndSurplusCountsTriangles) {

@@ -21,12 +21,15 @@
 #include "sweep/probe_command.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
+#include "render/terrain_fit.h"
 #include "report/report.h"
 #include "schemes/registry.h"
 #include "sweep/config.h"
 #include "sweep/gbench_json.h"
+#include "sweep/load_bench.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
+#include "terrain/terrain_shape.h"
 #include "vk/context.h"
 
 using namespace lb;
@@ -37,8 +40,15 @@ static int listSchemes() {
 }
 
 static int listDevicesCmd() {
-  for (auto& d : listDevices())
+  for (auto& d : listDevices()) {
     std::printf("[%d] %s: %s\n", d.index, d.name.c_str(), d.suitable ? "suitable" : d.rejectReason.c_str());
+    const DeviceLimits& l = d.limits;
+    const int side = largestSquareTerrain(l);
+    std::printf("    largest terrain: %d x %d samples (maxImageDimension2D %u, largest allocation %llu MiB, "
+                "%s heap %llu MiB)\n",
+                side, side, l.maxImageDimension2D, (unsigned long long)(l.maxAllocationBytes >> 20),
+                l.sharedHeap ? "one" : "device-local", (unsigned long long)(l.deviceHeapBytes >> 20));
+  }
   return 0;
 }
 
@@ -110,7 +120,7 @@ static int renderCmd(const RenderArgs& a) {
   // Everything is checked before the device starts and the frame renders, so a typo costs nothing.
   checkOutputFile(a.out, "--out");
   TerrainSpec spec = renderTerrain(a);
-  Heightfield terrain = makeHeightfield(spec);
+  terrainShape(spec);  // a missing or malformed file fails here; the samples are read once the device takes them
   CameraPath path = loadCameraPath(a.path);
   int frames = frameCount(path, a.fps);
   if (a.frame < 0 || a.frame >= frames)
@@ -118,6 +128,8 @@ static int renderCmd(const RenderArgs& a) {
   Context ctx;
   createContext(ctx, {a.device, a.validation});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
+  checkTerrainFits(deviceLimits(ctx.physicalDevice), spec, spec.file.empty() ? spec.type : spec.file);
+  Heightfield terrain = makeHeightfield(spec);
   {
     Renderer renderer(ctx, terrain, {a.width, a.height, a.grid});
     renderer.setScheme(*scheme, given);
@@ -294,6 +306,14 @@ int main(int argc, char** argv) {
   probe->add_option("--out", po.out, "Write the JSON here too");
   probe->add_flag("--append", po.append, "Append rows to the --out file");
 
+  // load-bench: what a terrain costs before the first frame, stage by stage (sweep/load_bench.h).
+  auto* loadBench = app.add_subcommand("load-bench", "Time loading a config's terrains and their preprocessing (normal map, each scheme's), with peak memory, as JSON");
+  LoadBenchOptions lbo;
+  loadBench->add_option("config", lbo.config, "Config file (terrains, grid, schemes and their first parameter variant)")->required();
+  loadBench->add_option("--out", lbo.out, "Write the JSON here too");
+  loadBench->add_option("--threads", lbo.threads, "Threads for the terrain passes (default: all hardware threads)")->check(CLI::Range(1, 1024));
+  loadBench->add_option("--write-r32f", lbo.writeR32f, "Also write the first terrain's heights as raw little-endian float32 (for GDAL)");
+
   // CLI11 answers a mistyped subcommand with "A subcommand is required"; say what is wrong instead.
   if (argc < 2) {
     app.name("lodbench");
@@ -327,6 +347,7 @@ int main(int argc, char** argv) {
     if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
     if (*ab) return abCommand(abo, co, vf);
     if (*probe) return probeCommand(po);
+    if (*loadBench) return loadBenchCommand(lbo);
     if (*gbench) {
       std::printf("%s\n", writeGoogleBenchmarkJson(gbenchDir).c_str());
       return 0;

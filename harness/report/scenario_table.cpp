@@ -167,6 +167,15 @@ std::vector<Cell> rowCells(const std::vector<const ReportCase*>& cases, const st
   return row;
 }
 
+// The control row's mean of `metric` per scheme-and-parameters label ({} without a control row).
+std::map<std::string, double> controlMeans(const ReportRun& run, const std::string& controlRow, const std::string& metric) {
+  std::map<std::string, double> control;
+  for (const ReportCase& c : run.cases)
+    if (!controlRow.empty() && c.scenario == controlRow && c.status == "ok")
+      if (auto v = caseMetric(c, metric).mean) control[c.label] = *v;
+  return control;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun& run,
@@ -180,10 +189,7 @@ std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun&
       if (c.scenario == scenario) cases.push_back(&c);
     return cases;
   };
-  std::map<std::string, double> control;
-  if (!controlRow.empty())
-    for (const ReportCase* c : casesOf(controlRow))
-      if (auto v = c->status == "ok" ? caseMetric(*c, metric).mean : std::nullopt) control[c->label] = *v;
+  const std::map<std::string, double> control = controlMeans(run, controlRow, metric);
   std::vector<std::pair<std::string, std::vector<Cell>>> rows;
   for (const std::string& scenario : run.scenarios) {
     const bool isControl = !controlRow.empty() && scenario == controlRow;
@@ -196,10 +202,7 @@ std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun&
 
 std::vector<std::string> scenarioOutcomes(const ReportRun& run, const std::string& metric) {
   const std::string controlRow = controlScenario(run);
-  std::map<std::string, double> control;
-  for (const ReportCase& c : run.cases)
-    if (!controlRow.empty() && c.scenario == controlRow && c.status == "ok")
-      if (auto v = caseMetric(c, metric).mean) control[c.label] = *v;
+  const std::map<std::string, double> control = controlMeans(run, controlRow, metric);
   const bool up = higherIsBetter(metric) && controlRow.empty();
   std::vector<std::string> out;
   for (const std::string& scenario : run.scenarios) {

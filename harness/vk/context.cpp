@@ -120,7 +120,7 @@ static std::vector<DeviceCandidate> examine(VkInstance instance, std::vector<VkP
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     if (p.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(out[i], &f2);
-    DeviceCandidate c{int(i), p.deviceName, false, ""};
+    DeviceCandidate c{int(i), p.deviceName, false, "", deviceLimits(out[i])};
     if (p.apiVersion < VK_API_VERSION_1_3)
       c.rejectReason = "Vulkan " + apiVersionString(p.apiVersion) + " < 1.3 (needs dynamic rendering)";
     else if (!f.tessellationShader)

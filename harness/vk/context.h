@@ -7,6 +7,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/device_limits.h"
+
 namespace lb {
 
 struct ContextOptions {
@@ -19,6 +21,7 @@ struct DeviceCandidate {
   std::string name;
   bool suitable = false;
   std::string rejectReason;  // empty when suitable
+  DeviceLimits limits;       // the largest terrain it takes (vk/device_limits.h)
 };
 
 struct Context {
