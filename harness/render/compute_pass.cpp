@@ -89,8 +89,8 @@ void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, Vk
   vkDestroyDescriptorSetLayout(ctx.device, setLayout, nullptr);
 }
 
-std::vector<float> readImageRgba32f(Context& ctx, const Image& image) {
-  const VkDeviceSize bytes = VkDeviceSize(image.width) * image.height * 4 * sizeof(float);
+std::vector<float> readImageRgba32f(Context& ctx, const Image& image, int channels) {
+  const VkDeviceSize bytes = VkDeviceSize(image.width) * image.height * VkDeviceSize(channels) * sizeof(float);
   Buffer staging;
   createBuffer(ctx, staging, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   runOneShot(ctx, [&](VkCommandBuffer cmd) {

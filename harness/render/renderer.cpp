@@ -287,7 +287,8 @@ std::vector<float> Renderer::capturedLevels() {
 
 SchemeTexture Renderer::readSchemeTexture() {
   finish();
-  return {int(schemeTex_.width), int(schemeTex_.height), readImageRgba32f(ctx_, schemeTex_)};
+  return {int(schemeTex_.width), int(schemeTex_.height), readImageRgba32f(ctx_, schemeTex_, schemeTexChannels_),
+          schemeTexChannels_};
 }
 
 }  // namespace lb

@@ -90,6 +90,13 @@ class Renderer {
 
   // Builds the scheme's pipelines and preprocessing; waits for frames in flight first.
   void setScheme(const Scheme& scheme, const ParamValues& params);
+  // Wall seconds of the load-time work, for run.json costs.terrains: the normal map (CPU, in the
+  // constructor) and the last setScheme's preprocessing (CPU preprocess, or the compute pass, with
+  // the texture's upload).
+  struct SetupCosts {
+    double normalMapS = 0, preprocessS = 0;
+  };
+  const SetupCosts& setupCosts() const { return setupCosts_; }
   // New values for the current scheme's parameters without rebuilding pipelines or preprocessing:
   // only for parameters that reach the shaders through the uniform block alone and leave maxLevel
   // unchanged (errbound's max_error_px in the surplus search, metrics/surplus.h).
@@ -156,6 +163,8 @@ class Renderer {
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
   Image color_, errorTarget_, depth_, height_, schemeTex_, normalMap_;
+  int schemeTexChannels_ = 4;
+  SetupCosts setupCosts_;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
   Buffer histogram_, readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
   VkDeviceSize uniformStride_ = 0;
   VkSampler sampler_ = VK_NULL_HANDLE;

@@ -1,8 +1,10 @@
 // Renderer construction: targets, terrain grid, descriptors and pipelines.
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "render/compute_pass.h"
 #include "error.h"
@@ -80,7 +82,9 @@ void Renderer::createTargets() {
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VK_CHECK(vkCreateSampler(ctx_.device, &si, nullptr, &sampler_));
   // Once per terrain; the format is argued in terrain/normal_map.h.
+  const auto tNormals = std::chrono::steady_clock::now();
   NormalMap normals = computeNormalMap(terrain_);
+  setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
   createImage(ctx_, normalMap_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   uploadImage(ctx_, normalMap_, normals.texels.data(), normals.texels.size() * sizeof(uint16_t));
@@ -172,6 +176,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   scheme.validate(params_);
   createGrid();
   destroyImage(ctx_, schemeTex_);
+  const auto tPreprocess = std::chrono::steady_clock::now();
   // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
   const VkImageUsageFlags texUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (!scheme.info().compute.empty()) {
@@ -186,13 +191,21 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     push.terrain = glm::vec4(terrain_.extent, float(settings_.grid), terrain_.minHeight, terrain_.maxHeight);
     std::memcpy(push.params, packed.params, sizeof push.params);
     runComputePass(ctx_, scheme.info().compute, sampler_, height_.view, schemeTex_, push);
+    schemeTexChannels_ = 4;
   } else {
     SchemeTexture tex = scheme.preprocessGrid(terrain_, params_, settings_.grid);
     if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
-    createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), VK_FORMAT_R32G32B32A32_SFLOAT,
+    if (tex.channels != 1 && tex.channels != 4)
+      throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of " + std::to_string(tex.channels) + " channels");
+    if (tex.rgba.size() != size_t(tex.width) * size_t(tex.height) * size_t(tex.channels))
+      throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of the wrong size");
+    const VkFormat format = tex.channels == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    createImage(ctx_, schemeTex_, uint32_t(tex.width), uint32_t(tex.height), format,
                 texUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     uploadImage(ctx_, schemeTex_, tex.rgba.data(), tex.rgba.size() * sizeof(float));
+    schemeTexChannels_ = tex.channels;
   }
+  setupCosts_.preprocessS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tPreprocess).count();
 
   VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
   VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

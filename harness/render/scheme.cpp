@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "error.h"
 #include "number_text.h"
@@ -58,10 +59,8 @@ void requireOrdered(const std::string& scheme, const ParamValues& values, const 
                    (strict ? "greater than " : "at least ") + lo + " (" + numberText(a) + ")");
 }
 
-SchemeTexture redTexture(int width, int height, const std::vector<float>& red) {
-  SchemeTexture tex{width, height, std::vector<float>(red.size() * 4, 0.0f)};
-  for (size_t i = 0; i < red.size(); ++i) tex.rgba[i * 4] = red[i];
-  return tex;
+SchemeTexture redTexture(int width, int height, std::vector<float> red) {
+  return {width, height, std::move(red), 1};
 }
 
 const char* partitioningName(Partitioning p) {

@@ -48,7 +48,10 @@ constexpr const char* kIntegerParam = "integer";
 // Optional preprocessing output a scheme hands to the renderer (bound at LB_BINDING_SCHEME_TEX).
 struct SchemeTexture {
   int width = 0, height = 0;
-  std::vector<float> rgba;  // width * height * 4
+  std::vector<float> rgba;  // width * height * channels
+  // 4: R32G32B32A32_SFLOAT; 1: R32_SFLOAT (a per-sample map: 4 bytes a texel instead of 16, so a
+  // 16385^2 density map is 1 GiB, not 4 GiB; shaders read .r either way).
+  int channels = 4;
 };
 
 // Optional base mesh a scheme supplies instead of the renderer's uniform N x N grid (non-uniform
@@ -110,8 +113,8 @@ ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given);
 // For Scheme::validate: throws InputError unless values[lo] < values[hi] (or <= when !strict).
 void requireOrdered(const std::string& scheme, const ParamValues& values, const std::string& lo, const std::string& hi,
                     bool strict);
-// A preprocessing texture with `red` in the first channel.
-SchemeTexture redTexture(int width, int height, const std::vector<float>& red);
+// A one-channel preprocessing texture holding `red` (moved in, not copied).
+SchemeTexture redTexture(int width, int height, std::vector<float> red);
 const char* partitioningName(Partitioning p);
 const char* topologyName(Topology t);
 

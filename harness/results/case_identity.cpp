@@ -21,6 +21,7 @@ json terrainInputs(const TerrainSpec& t, FileDigests& files) {
   if (t.type == "procedural" || isGeneratedTerrain(t.type)) {
     j["size"] = t.size;
     j["seed"] = t.seed;
+    if (t.detailToSpacing) j["detail"] = "resolution";  // only when set: earlier digests hold
   } else {
     j["sha256"] = fileDigest(t.file, files);
     if (t.type == "r16" || t.type == "r32f") j["raw_size"] = {t.rawWidth, t.rawHeight};

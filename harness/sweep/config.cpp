@@ -74,7 +74,7 @@ std::string inputFile(const Reader& r, const json& v, const std::string& ptr, co
 }
 
 std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin"});
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "detail"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
   static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f", "spikes", "cliff", "flat", "voids"};
@@ -98,6 +98,12 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
   }
   if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
+  if (t.contains("detail")) {  // procedural only: "fixed" (8 octaves, the default) or "resolution"
+    if (spec.type != "procedural") r.fail(ptr + "/detail", "only procedural terrains take a 'detail'");
+    const std::string d = r.string(t["detail"], ptr + "/detail");
+    if (d != "fixed" && d != "resolution") r.fail(ptr + "/detail", "'" + printable(d) + "' is not one of fixed, resolution");
+    spec.detailToSpacing = d == "resolution";
+  }
   if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
   // Procedural heights span [0, height_scale], so its bound is the height bound (kMaxAbsHeight);
   // for files the product with the stored values is checked when the file is read below.
@@ -408,7 +414,8 @@ std::string terrainLabel(const TerrainSpec& t) {
     return terrainLabel(atOrigin) + "-at" + std::to_string(std::llround(t.originX)) + "_" +
            std::to_string(std::llround(t.originZ));
   }
-  if (t.type == "procedural") return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed);
+  if (t.type == "procedural")
+    return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed) + (t.detailToSpacing ? "-detail" : "");
   if (t.type == "voids") return "voids1201s" + std::to_string(t.seed);  // the tile's size, not t.size
   if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
   auto slash = t.file.find_last_of('/');

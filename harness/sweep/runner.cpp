@@ -53,6 +53,28 @@ static std::string referenceKey(const Case& c) {
   return c.terrainDigest.empty() ? c.terrainLabel : c.terrainLabel + "#" + c.terrainDigest.substr(0, 16);
 }
 
+// Load-time stage costs per terrain label (run.json costs.terrains), from this invocation's cases:
+// the latest case's figures, since every case loads its terrain and builds its renderer anew.
+struct TerrainStageCosts {
+  double loadS = -1, normalMapS = -1;
+  std::map<std::string, double> preprocessS;  // by scheme
+};
+static std::map<std::string, TerrainStageCosts> gStageCosts;
+
+static void recordStageCosts(const Case& c, double loadS, const Renderer::SetupCosts& setup) {
+  TerrainStageCosts& t = gStageCosts[c.terrainLabel];
+  t.loadS = loadS;
+  t.normalMapS = setup.normalMapS;
+  t.preprocessS[c.scheme] = setup.preprocessS;
+}
+
+static json stageCostsJson() {
+  json out = json::object();
+  for (const auto& [label, t] : gStageCosts)
+    out[label] = {{"load_s", t.loadS}, {"normal_map_s", t.normalMapS}, {"preprocess_s", t.preprocessS}};
+  return out;
+}
+
 CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
                    SweepProgress* progress, ReferenceCache& refs) {
   using Phase = SweepProgress::Phase;
@@ -61,6 +83,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   const Scheme* scheme = findScheme(c.scheme);
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
   Heightfield terrain = makeHeightfield(c.terrain);
+  const double loadS = secondsSince(t0);  // run.json costs.terrains: the terrain load alone
   CameraPath path = loadCameraPath(c.path);
   RenderSettings settings{c.width, c.height, c.grid, config.testSlowdown};
   ParamValues params = c.params;
@@ -73,6 +96,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   }
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, params);
+  recordStageCosts(c, loadS, renderer.setupCosts());
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };
@@ -228,6 +252,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   for (size_t i = 0; i < cases.size(); ++i)
     if (plan.reuse.count(cases[i].id)) work[i] = CaseWork{cases[i].scheme, 0, 0, false};
   ReferenceCache refs(totals.dir + "/truth");  // ground-truth images persist for resume
+  gStageCosts.clear();
   SweepProgress progress(options.progress, work, [&refs] {
     return SweepProgress::Truth{refs.rayCasts(), refs.rayCastSeconds()};
   });
@@ -285,6 +310,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       costs[c.scheme] = {{"timing_s_per_frame", val(o.timing)}, {"measured_s_per_frame", val(o.measured)},
                          {"case_overhead_s", val(o.overhead)}};
   }
+  costs["terrains"] = stageCostsJson();  // no scheme is named "terrains"
   run["costs"] = costs;
   run["interrupted"] = totals.interrupted;
   run["totals"] = {{"ok", totals.ok}, {"failed", totals.failed}, {"skipped", totals.skipped}, {"cases", cases.size()}};

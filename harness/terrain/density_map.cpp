@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 
@@ -33,7 +34,9 @@ std::vector<float> densityMap(const Heightfield& hf, float threshold, float scal
   if (w < 3 || h < 3) return out;  // no interior sample has all eight neighbours
   const float range = hf.maxHeight - hf.minHeight;
   auto height = [&](int x, int z) { return range > 0 ? (hf.at(x, z) - hf.minHeight) / range : 0.0f; };
-  for (int z = 0; z < h; ++z)
+  // Rows are independent: bands on every hardware thread give the same map as one thread.
+  parallelRows(h, [&](int z0, int z1) {
+  for (int z = z0; z < z1; ++z)
     for (int x = 0; x < w; ++x) {
       const int cx = std::clamp(x, 1, w - 2), cz = std::clamp(z, 1, h - 2);  // border: nearest interior
       const float c = height(cx, cz);
@@ -49,6 +52,7 @@ std::vector<float> densityMap(const Heightfield& hf, float threshold, float scal
       density *= scale;
       out[size_t(z) * size_t(w) + size_t(x)] = std::max(std::min(density, 1.0f), kMinDensity);
     }
+  });
   return out;
 }
 

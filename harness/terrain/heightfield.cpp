@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "terrain/generators.h"
+#include "terrain/parallel_rows.h"
 
 // makeProcedural promises the same bits on every machine. Fusing a*b+c into an FMA rounds once
 // instead of twice, so a compiler that contracts (GCC's default in gnu++ mode on FMA targets,
@@ -73,7 +74,8 @@ namespace {
 
 constexpr int kMinSize = 2;
 constexpr int kMaxSize = 16385;
-constexpr int kOctaves = 8;
+constexpr int kOctaves = 8;      // the default ("detail": "fixed"): the finest cell is 1/192 of the extent
+constexpr int kMaxOctaves = 16;  // "detail": "resolution" at the largest size needs 13
 constexpr int kRidgedOctaves = 5;       // octaves 1..5; octave 0 is uplift, the rest fBm detail
 constexpr float kBaseFrequency = 1.5f;  // noise cells across the whole terrain at octave 0
 constexpr float kRidgeOffset = 1.0f;    // Musgrave's offset: 1 puts the crest at noise == 0
@@ -138,9 +140,9 @@ struct Octave {
 // ridged multifractal (sharp crests, each octave gated by the previous one so valleys stay
 // smooth); the top octaves are fBm detail scaled by the ridges, so peaks are rough and valley
 // floors calm.
-float hybridMultifractal(float x, float z, const Octave* oct) {
+float hybridMultifractal(float x, float z, const Octave* oct, int octaves) {
   float uplift = 0.0f, ridged = 0.0f, detail = 0.0f, weight = 1.0f;
-  for (int i = 0; i < kOctaves; ++i) {
+  for (int i = 0; i < octaves; ++i) {
     const float n = gradientNoise(x + oct[i].offsetX, z + oct[i].offsetZ, oct[i].seed);
     if (i == 0) {
       uplift = 0.5f + 0.5f * n;
@@ -179,9 +181,15 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
     throw InputError("terrain: procedural heightScale " + std::to_string(spec.heightScale) +
                      " is above the largest height accepted, 1e5 (see kMaxAbsHeight)");
 
-  Octave oct[kOctaves];
+  // Octave i has kBaseFrequency * 2^i noise cells across the terrain. "detail": "resolution" adds
+  // fBm octaves while a cell still spans >= 2 sample spacings (the finest relief the samples can
+  // hold), never fewer than the default 8, whose values it leaves unchanged (octaves 0..7 are the same).
+  int octaves = kOctaves;
+  if (spec.detailToSpacing)
+    while (octaves < kMaxOctaves && float(spec.size - 1) / (kBaseFrequency * float(1 << octaves)) >= 2.0f) ++octaves;
+  Octave oct[kMaxOctaves];
   float amplitude = 1.0f;
-  for (int i = 0; i < kOctaves; ++i) {
+  for (int i = 0; i < octaves; ++i) {
     const uint32_t s = mix32(spec.seed * 0x9e3779b9u + uint32_t(i) * 0x85ebca6bu + 0x165667b1u);
     const uint32_t a = mix32(s ^ 0x27d4eb2fu), b = mix32(s ^ 0x61c88647u);
     // 24-bit fractions -> offsets in [0, 256): exact in float, far from the lattice of octave 0.
@@ -197,25 +205,22 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
   auto fillRows = [&](int z0, int z1) {
     for (int z = z0; z < z1; ++z) {
       float* row = &hf.h[size_t(z) * size_t(spec.size)];
-      for (int x = 0; x < spec.size; ++x) row[x] = hybridMultifractal(float(x) * step, float(z) * step, oct);
+      for (int x = 0; x < spec.size; ++x) row[x] = hybridMultifractal(float(x) * step, float(z) * step, oct, octaves);
     }
   };
   // Samples are independent, so splitting rows across threads cannot change a single bit; it only
   // matters for the large sizes (16385^2 takes ~30 s on one core).
-  const int threads = int(std::clamp<unsigned>(std::thread::hardware_concurrency(), 1u, 64u));
-  const int chunks = std::max(1, std::min(threads, spec.size / 256));
-  std::vector<std::thread> pool;
-  for (int c = 1; c < chunks; ++c)
-    pool.emplace_back(fillRows, spec.size * c / chunks, spec.size * (c + 1) / chunks);
-  fillRows(0, spec.size / chunks);
-  for (std::thread& t : pool) t.join();
+  parallelRows(spec.size, fillRows, 256);
 
   hf.updateRange();
   const float span = hf.maxHeight - hf.minHeight;
   const float scale = span > 0.0f ? spec.heightScale / span : 0.0f;
   const float lo = hf.minHeight;
   // Clamp because (max - min) * (heightScale / span) can round a hair above heightScale.
-  for (float& v : hf.h) v = std::min((v - lo) * scale, spec.heightScale);
+  parallelRows(spec.size, [&](int z0, int z1) {
+    for (size_t i = size_t(z0) * size_t(spec.size); i < size_t(z1) * size_t(spec.size); ++i)
+      hf.h[i] = std::min((hf.h[i] - lo) * scale, spec.heightScale);
+  }, 256);
   hf.updateRange();
   return hf;
 }

@@ -35,6 +35,9 @@ struct TerrainSpec {
   float extent = 1000.0f;           // world units covered along x and z
   float heightScale = 120.0f;       // procedural: peak height; files: multiplier on stored values
   double originX = 0.0, originZ = 0.0;  // world position of the terrain's (0, 0) corner (Heightfield::originX)
+  // procedural "detail": "resolution": fBm octaves continue down to 2 sample spacings, so more
+  // samples carry more relief; false ("fixed", the default) keeps the 8 octaves of every earlier run.
+  bool detailToSpacing = false;
 };
 
 // Largest |height| accepted, in world units after heightScale. Earth's relief spans -11 km to

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 
@@ -46,14 +47,17 @@ NormalMap computeNormalMap(const Heightfield& hf) {
   nm.texels.resize(size_t(hf.width) * size_t(hf.height) * 2);
   // As common.glsl terrainNormal() at a sample point: neighbours one texel apart, clamped to the border.
   const float tx = hf.extent / float(std::max(hf.width - 1, 1)), tz = hf.extent / float(std::max(hf.height - 1, 1));
-  for (int z = 0; z < hf.height; ++z)
-    for (int x = 0; x < hf.width; ++x) {
-      float gx = (hf.at(x - 1, z) - hf.at(x + 1, z)) / (2.0f * tx);
-      float gz = (hf.at(x, z - 1) - hf.at(x, z + 1)) / (2.0f * tz);
-      size_t i = (size_t(z) * size_t(hf.width) + size_t(x)) * 2;
-      nm.texels[i] = floatToHalf(gx);
-      nm.texels[i + 1] = floatToHalf(gz);
-    }
+  // Rows are independent: bands on every hardware thread give the same texels as one thread.
+  parallelRows(hf.height, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z)
+      for (int x = 0; x < hf.width; ++x) {
+        float gx = (hf.at(x - 1, z) - hf.at(x + 1, z)) / (2.0f * tx);
+        float gz = (hf.at(x, z - 1) - hf.at(x, z + 1)) / (2.0f * tz);
+        size_t i = (size_t(z) * size_t(hf.width) + size_t(x)) * 2;
+        nm.texels[i] = floatToHalf(gx);
+        nm.texels[i + 1] = floatToHalf(gz);
+      }
+  });
   return nm;
 }
 

@@ -4,6 +4,7 @@
 
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 namespace {
@@ -91,9 +92,12 @@ PlaneFitResult fitPlanes(const Heightfield& hf, PlaneFit fit) {
   PlaneFitResult r;
   r.width = planeFitBlockCount(hf.width);
   r.height = planeFitBlockCount(hf.height);
-  r.blocks.reserve(size_t(r.width) * size_t(r.height));
-  for (int bz = 0; bz < r.height; ++bz)
-    for (int bx = 0; bx < r.width; ++bx) r.blocks.push_back(fitBlock(hf, bx, bz, fit));
+  r.blocks.resize(size_t(r.width) * size_t(r.height));
+  // Blocks are independent: bands of block rows on every hardware thread give the same result.
+  parallelRows(r.height, [&](int bz0, int bz1) {
+    for (int bz = bz0; bz < bz1; ++bz)
+      for (int bx = 0; bx < r.width; ++bx) r.blocks[size_t(bz) * size_t(r.width) + size_t(bx)] = fitBlock(hf, bx, bz, fit);
+  }, 4);
   return r;
 }
 

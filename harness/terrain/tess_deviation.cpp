@@ -1,11 +1,13 @@
 #include "terrain/tess_deviation.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <thread>
 
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 namespace {
@@ -23,55 +25,109 @@ struct Cell {
   }
 };
 
-Cell cellAt(const Heightfield& hf, dvec2 p) {
+// int(std::floor(v)) for v inside the int range (texel coordinates are), without the libm call
+// that baseline x86-64 (no SSE4.1 roundsd) makes of std::floor: this runs once per edge segment.
+inline int floorToInt(double v) {
+  const int i = int(v);
+  return v < double(i) ? i - 1 : i;
+}
+
+inline Cell cellAt(const Heightfield& hf, dvec2 p) {
   Cell c;
-  c.x = std::clamp(int(std::floor(p.x)), 0, std::max(hf.width - 2, 0));
-  c.z = std::clamp(int(std::floor(p.y)), 0, std::max(hf.height - 2, 0));
-  c.h00 = hf.at(c.x, c.z);
-  c.h10 = hf.at(c.x + 1, c.z);
-  c.h01 = hf.at(c.x, c.z + 1);
-  c.h11 = hf.at(c.x + 1, c.z + 1);
+  c.x = std::clamp(floorToInt(p.x), 0, std::max(hf.width - 2, 0));
+  c.z = std::clamp(floorToInt(p.y), 0, std::max(hf.height - 2, 0));
+  if (hf.width >= 2 && hf.height >= 2) {  // the four samples are inside: index without at()'s clamps
+    const float* r0 = &hf.h[size_t(c.z) * size_t(hf.width) + size_t(c.x)];
+    const float* r1 = r0 + hf.width;
+    c.h00 = r0[0];
+    c.h10 = r0[1];
+    c.h01 = r1[0];
+    c.h11 = r1[1];
+  } else {
+    c.h00 = hf.at(c.x, c.z);
+    c.h10 = hf.at(c.x + 1, c.z);
+    c.h01 = hf.at(c.x, c.z + 1);
+    c.h11 = hf.at(c.x + 1, c.z + 1);
+  }
   return c;
 }
 
 double heightAt(const Heightfield& hf, dvec2 p) { return cellAt(hf, p).at(p); }
 
+// Parameters t in (0, 1) where segment coordinate a -> b crosses the integer grid lines, in
+// increasing t: (g - a) / (b - a) for the integers g strictly between a and b. The quotient is
+// monotone in g (increasing for a < b, decreasing for a > b), so walking g in the right
+// direction yields the values already sorted, with no list and no sort.
+// The crossings are in (0, 1]: |g - a| < |b - a| and a correctly rounded quotient cannot pass 1.
+struct Crossings {
+  double a, b, g = 0, step = 0, lo = 0, hi = 0;
+  double t = 0;  // the current crossing's parameter, computed once per crossing
+  bool any = false;
+  Crossings(double a_, double b_) : a(a_), b(b_) {
+    if (a == b) return;
+    lo = std::min(a, b);
+    hi = std::max(a, b);
+    // floor(lo) + 1, + 2, ... < hi (the integers strictly between), upwards or downwards from
+    // ceil(hi) - 1, the largest of them; integers stay exact in double.
+    g = a < b ? std::floor(lo) + 1.0 : std::ceil(hi) - 1.0;
+    step = a < b ? 1.0 : -1.0;
+    update();
+  }
+  double value() const { return t; }
+  void next() {
+    g += step;
+    update();
+  }
+  void update() {
+    any = g > lo && g < hi;
+    if (any) t = (g - a) / (b - a);
+  }
+};
+
 // Largest |B - chord| along segment p->q, where the chord interpolates B(p), B(q) linearly.
 double edgeDeviation(const Heightfield& hf, dvec2 p, dvec2 q, double hp, double hq) {
   dvec2 d = q - p;
-  thread_local std::vector<double> ts;
-  ts.assign({0.0, 1.0});
-  for (int axis = 0; axis < 2; ++axis) {
-    double a = axis ? p.y : p.x, b = axis ? q.y : q.x;
-    if (a == b) continue;
-    for (double g = std::floor(std::min(a, b)) + 1.0; g < std::max(a, b); g += 1.0) ts.push_back((g - a) / (b - a));
-  }
-  std::sort(ts.begin(), ts.end());
-  int n = int(ts.size());
+  // The breakpoints 0, 1 and both axes' crossings in increasing order: a three-way merge of
+  // sorted sequences is the sorted list a sort of all of them gives (values, not positions, matter).
+  Crossings cx(p.x, q.x), cz(p.y, q.y);
   double worst = 0;
-  for (int i = 0; i + 1 < n; ++i) {
-    double t0 = ts[i], t1 = ts[i + 1];
-    if (t1 <= t0) continue;
-    Cell c = cellAt(hf, p + d * (0.5 * (t0 + t1)));
-    auto dev = [&](double t) { return c.at(p + d * t) - (hp + t * (hq - hp)); };
-    worst = std::max({worst, std::abs(dev(t0)), std::abs(dev(t1))});
-    double tw = c.h00 - c.h10 - c.h01 + c.h11;
-    double quad = tw * d.x * d.y;  // t^2 coefficient of B along the segment
-    if (quad != 0.0) {
-      double fx0 = p.x - c.x, fz0 = p.y - c.z;
-      double lin = (c.h10 - c.h00) * d.x + (c.h01 - c.h00) * d.y + tw * (d.x * fz0 + fx0 * d.y) - (hq - hp);
-      double ts0 = -lin / (2.0 * quad);
-      if (ts0 > t0 && ts0 < t1) worst = std::max(worst, std::abs(dev(ts0)));
+  double t0 = 0.0;
+  bool endDone = false;
+  while (!endDone) {
+    double t1;
+    const bool hasX = cx.any, hasZ = cz.any;
+    if (hasX && (!hasZ || cx.value() <= cz.value())) {
+      t1 = cx.value();
+      cx.next();
+    } else if (hasZ) {
+      t1 = cz.value();
+      cz.next();
+    } else {
+      t1 = 1.0;
+      endDone = true;
     }
+    if (t1 > t0) {
+      Cell c = cellAt(hf, p + d * (0.5 * (t0 + t1)));
+      auto dev = [&](double t) { return c.at(p + d * t) - (hp + t * (hq - hp)); };
+      worst = std::max({worst, std::abs(dev(t0)), std::abs(dev(t1))});
+      double tw = c.h00 - c.h10 - c.h01 + c.h11;
+      double quad = tw * d.x * d.y;  // t^2 coefficient of B along the segment
+      if (quad != 0.0) {
+        double fx0 = p.x - c.x, fz0 = p.y - c.z;
+        double lin = (c.h10 - c.h00) * d.x + (c.h01 - c.h00) * d.y + tw * (d.x * fz0 + fx0 * d.y) - (hq - hp);
+        double ts0 = -lin / (2.0 * quad);
+        if (ts0 > t0 && ts0 < t1) worst = std::max(worst, std::abs(dev(ts0)));
+      }
+    }
+    t0 = std::max(t0, t1);
   }
   return worst;
 }
 
-}  // namespace
-
-double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c) {
-  double ha = heightAt(hf, a), hb = heightAt(hf, b), hc = heightAt(hf, c);
-  double worst = std::max({edgeDeviation(hf, a, b, ha, hb), edgeDeviation(hf, b, c, hb, hc), edgeDeviation(hf, c, a, hc, ha)});
+// The part of triangleDeviation inside the triangle: heightfield samples against the plane
+// through the three vertices (heights ha, hb, hc). 0 for a degenerate triangle.
+double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, double ha, double hb, double hc) {
+  double worst = 0;
   dvec2 e1 = b - a, e2 = c - a;
   double det = e1.x * e2.y - e1.y * e2.x;
   if (std::abs(det) < 1e-12) return worst;  // degenerate: its edges are all there is
@@ -97,12 +153,34 @@ double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c) {
     }
     xlo = std::max(xlo, 0.0);
     xhi = std::min(xhi, double(hf.width - 1));
-    for (int x = int(std::ceil(xlo)); x <= int(std::floor(xhi)); ++x) {
-      double plane = ha + gx * (x - a.x) + gz * (z - a.y);
-      worst = std::max(worst, std::abs(double(hf.at(x, z)) - plane));
+    const int x0 = int(std::ceil(xlo)), x1 = int(std::floor(xhi));
+    if (x0 > x1) continue;
+    // z is in [0, height - 1] and x in [0, width - 1] here: the row is indexed directly.
+    const float* row = &hf.h[size_t(z) * size_t(hf.width)];
+    // plane = (ha + gx * (x - a.x)) + gz * (z - a.y), evaluated left to right as written before;
+    // the row term is the same double on every sample. Four running maxima break the dependency
+    // chain; max is exact and order-free, so the result is the same bits.
+    const double rowTerm = gz * (z - a.y);
+    double w0 = 0, w1 = 0, w2 = 0, w3 = 0;
+    int x = x0;
+    for (; x + 3 <= x1; x += 4) {
+      w0 = std::max(w0, std::abs(double(row[x]) - (ha + gx * (x - a.x) + rowTerm)));
+      w1 = std::max(w1, std::abs(double(row[x + 1]) - (ha + gx * (x + 1 - a.x) + rowTerm)));
+      w2 = std::max(w2, std::abs(double(row[x + 2]) - (ha + gx * (x + 2 - a.x) + rowTerm)));
+      w3 = std::max(w3, std::abs(double(row[x + 3]) - (ha + gx * (x + 3 - a.x) + rowTerm)));
     }
+    for (; x <= x1; ++x) w0 = std::max(w0, std::abs(double(row[x]) - (ha + gx * (x - a.x) + rowTerm)));
+    worst = std::max({worst, w0, w1, w2, w3});
   }
   return worst;
+}
+
+}  // namespace
+
+double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c) {
+  double ha = heightAt(hf, a), hb = heightAt(hf, b), hc = heightAt(hf, c);
+  double worst = std::max({edgeDeviation(hf, a, b, ha, hb), edgeDeviation(hf, b, c, hb, hc), edgeDeviation(hf, c, a, hc, ha)});
+  return std::max(worst, interiorDeviation(hf, a, b, c, ha, hb, hc));
 }
 
 namespace {
@@ -181,36 +259,85 @@ std::vector<dvec2> patchTriangles(int k, const int edges[4]) {
   return out;
 }
 
+namespace {
+
+// One level's triangles reduced to what the maximum needs: each directed edge once and each
+// ordered triangle once (neighbouring cells' both-diagonal triangles share edges, and every
+// finer edge level repeats the strip's inner row). dev(p, k) is the maximum over the triangles
+// of max(edges, interior), so taking every distinct edge and interior once gives the same value,
+// bit for bit: the same deviations are computed from the same coordinates, and max is exact.
+// Direction matters (p->q and q->p round differently), so only identical directed edges merge.
+struct LevelWork {
+  std::vector<std::array<dvec2, 2>> edges;
+  std::vector<std::array<dvec2, 3>> triangles;
+};
+
+template <size_t N>
+bool lessPoints(const std::array<dvec2, N>& l, const std::array<dvec2, N>& r) {
+  for (size_t i = 0; i < N; ++i) {
+    if (l[i].x != r[i].x) return l[i].x < r[i].x;
+    if (l[i].y != r[i].y) return l[i].y < r[i].y;
+  }
+  return false;
+}
+
+template <size_t N>
+void sortUnique(std::vector<std::array<dvec2, N>>& v) {
+  std::sort(v.begin(), v.end(), lessPoints<N>);
+  v.erase(std::unique(v.begin(), v.end(), [](const auto& l, const auto& r) { return !lessPoints<N>(l, r) && !lessPoints<N>(r, l); }),
+          v.end());
+}
+
+LevelWork levelWork(const std::vector<dvec2>& tri) {
+  LevelWork w;
+  for (size_t i = 0; i + 2 < tri.size(); i += 3) {
+    w.triangles.push_back({tri[i], tri[i + 1], tri[i + 2]});
+    for (int e = 0; e < 3; ++e) w.edges.push_back({tri[i + size_t(e)], tri[i + size_t((e + 1) % 3)]});
+  }
+  sortUnique(w.edges);
+  sortUnique(w.triangles);
+  return w;
+}
+
+}  // namespace
+
 DeviationTable tessDeviation(const Heightfield& hf, int grid) {
   DeviationTable t;
   t.grid = grid;
   t.dev.assign(size_t(grid) * size_t(grid) * kErrboundLevels, 0.0f);
   // The triangle lists do not depend on the patch: build them once per level, in patch (u, v).
-  std::vector<std::vector<dvec2>> perLevel(kErrboundLevels);
+  std::vector<LevelWork> perLevel;
   for (int k = 0; k < kErrboundLevels; ++k) {
     int L = 1 << k;
-    interiorTriangles(L, perLevel[size_t(k)]);
+    std::vector<dvec2> tri;
+    interiorTriangles(L, tri);
     for (int E = L; E <= 64; E *= 2)
-      for (int e = 0; e < 4; ++e) edgeTriangles(L, E, e, perLevel[size_t(k)]);
+      for (int e = 0; e < 4; ++e) edgeTriangles(L, E, e, tri);
+    perLevel.push_back(levelWork(tri));
   }
   const double sx = double(hf.width - 1) / grid, sz = double(hf.height - 1) / grid;
   std::atomic<int> next{0};
   auto work = [&] {
     for (int p; (p = next++) < grid * grid;) {
       dvec2 origin((p % grid) * sx, (p / grid) * sz);
+      auto tex = [&](dvec2 uv) { return origin + dvec2(uv.x * sx, uv.y * sz); };
       for (int k = 0; k < kErrboundLevels; ++k) {
-        const std::vector<dvec2>& tri = perLevel[size_t(k)];
+        const LevelWork& w = perLevel[size_t(k)];
         double worst = 0;
-        for (size_t i = 0; i + 2 < tri.size(); i += 3) {
-          auto tex = [&](dvec2 uv) { return origin + dvec2(uv.x * sx, uv.y * sz); };
-          worst = std::max(worst, triangleDeviation(hf, tex(tri[i]), tex(tri[i + 1]), tex(tri[i + 2])));
+        for (const auto& e : w.edges) {
+          const dvec2 a = tex(e[0]), b = tex(e[1]);
+          worst = std::max(worst, edgeDeviation(hf, a, b, heightAt(hf, a), heightAt(hf, b)));
+        }
+        for (const auto& tr : w.triangles) {
+          const dvec2 a = tex(tr[0]), b = tex(tr[1]), c = tex(tr[2]);
+          worst = std::max(worst, interiorDeviation(hf, a, b, c, heightAt(hf, a), heightAt(hf, b), heightAt(hf, c)));
         }
         // Rounded up so the float the shader reads never undercuts the double bound.
         t.dev[size_t(p) * kErrboundLevels + size_t(k)] = std::nextafter(float(worst), INFINITY);
       }
     }
   };
-  unsigned threads = std::max(1u, std::min(16u, std::thread::hardware_concurrency()));
+  const unsigned threads = unsigned(terrainThreads());
   std::vector<std::thread> pool;
   for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
   work();
