@@ -385,7 +385,7 @@ TEST(Terrain, UnknownTypeListsValidTypes) {
   s.type = "tiff";
   const std::string msg = inputErrorOf([&] { lb::makeHeightfield(s); });
   EXPECT_NE(msg.find("'tiff'"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("procedural, hgt, png16, r16, r32f"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("procedural, hgt, png16, r16, r32f, gdal"), std::string::npos) << msg;
 }
 
 TEST(Terrain, RealSrtmTile) {

@@ -25,6 +25,11 @@ json terrainInputs(const TerrainSpec& t, FileDigests& files) {
   } else {
     j["sha256"] = fileDigest(t.file, files);
     if (t.type == "r16" || t.type == "r32f") j["raw_size"] = {t.rawWidth, t.rawHeight};
+    if (t.type == "gdal") {  // what of the file is read (other types keep their earlier digests)
+      j["band"] = t.band;
+      j["window"] = t.window.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.window);
+      j["overview"] = t.overview;
+    }
   }
   return j;
 }

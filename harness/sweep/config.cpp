@@ -12,6 +12,7 @@
 #include "error.h"
 #include "number_text.h"
 #include "results/case_identity.h"
+#include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
 #include "schemes/registry.h"
 #include "sweep/json_lines.h"
@@ -74,21 +75,32 @@ std::string inputFile(const Reader& r, const json& v, const std::string& ptr, co
 }
 
 std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "detail"});
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
+                      "window", "overview", "detail"});
   TerrainSpec spec;
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt", "png16", "r16", "r32f", "spikes", "cliff", "flat", "voids"};
+  static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",  "r32f",
+                                               "gdal",       "spikes", "cliff", "flat", "voids"};
   if (!kTypes.count(spec.type))
-    r.fail(ptr + "/type", "'" + printable(spec.type) + "' is not one of procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids");
+    r.fail(ptr + "/type", "'" + printable(spec.type) +
+                              "' is not one of procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids");
+  const bool gdal = spec.type == "gdal";
+  if (gdal && !haveGdal())
+    r.fail(ptr + "/type", "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
+                          "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
   // A field the type does not read would be silently ignored: reject it instead.
   const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural" || isGeneratedTerrain(spec.type);
   auto reason = [](const std::string& k) {
     if (k == "file") return "generated terrains are not read from a file";
     if (k == "size" || k == "seed") return "only generated terrains take a size and seed";
+    if (k == "band" || k == "window" || k == "overview") return "only gdal rasters take a band, window and overview";
     return "only r16 and r32f take a width and height; other files carry their size";
   };
-  for (const std::string k : {"file", "size", "seed", "width", "height"}) {
-    const bool used = k == "file" ? !procedural : (k == "size" || k == "seed") ? procedural : raw;
+  for (const std::string k : {"file", "size", "seed", "width", "height", "band", "window", "overview"}) {
+    const bool used = k == "file"                    ? !procedural
+                      : (k == "size" || k == "seed") ? procedural
+                      : (k == "width" || k == "height") ? raw
+                                                        : gdal;
     if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
   }
   if (!procedural) {
@@ -97,6 +109,7 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     spec.heightScale = 1.0f;
   }
   if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
+  if (gdal) spec.extent = 0.0f;  // from the file's georeferencing unless "extent" is given
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
   if (t.contains("detail")) {  // procedural only: "fixed" (8 octaves, the default) or "resolution"
     if (spec.type != "procedural") r.fail(ptr + "/detail", "only procedural terrains take a 'detail'");
@@ -117,6 +130,14 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     spec.originZ = r.number(t["origin"][1], ptr + "/origin/1", -1e8, 1e8);
   }
   if (raw && (spec.rawWidth == 0 || spec.rawHeight == 0)) r.fail(ptr, "raw terrain needs 'width' and 'height'");
+  if (t.contains("band")) spec.band = r.integer(t["band"], ptr + "/band", 1, 65535);
+  if (t.contains("overview")) spec.overview = r.integer(t["overview"], ptr + "/overview", 1, 30);
+  if (t.contains("window")) {  // [x, y, w, h] in the raster's pixels; checked against its size when read
+    const json& w = t["window"];
+    if (!w.is_array() || w.size() != 4) r.fail(ptr + "/window", "expected [x, y, width, height] in pixels");
+    for (size_t i = 0; i < 4; ++i)
+      spec.window.push_back(r.integer(w[i], ptr + "/window/" + std::to_string(i), i < 2 ? 0 : 2, 2147483647));
+  }
   // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
   if (!procedural) {
     try {
@@ -420,7 +441,14 @@ std::string terrainLabel(const TerrainSpec& t) {
   if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
   auto slash = t.file.find_last_of('/');
   std::string stem = t.file.substr(slash == std::string::npos ? 0 : slash + 1);
-  return stem.substr(0, stem.find('.'));
+  stem = stem.substr(0, stem.find('.'));
+  // Two bands, windows or overviews of one file are different terrains: say so in the label.
+  if (t.band > 0) stem += "-b" + std::to_string(t.band);
+  if (t.window.size() == 4)
+    stem += "-w" + std::to_string(t.window[0]) + "_" + std::to_string(t.window[1]) + "_" + std::to_string(t.window[2]) +
+            "x" + std::to_string(t.window[3]);
+  if (t.overview > 0) stem += "-o" + std::to_string(t.overview);
+  return stem;
 }
 
 static std::string formatNumber(double v) {

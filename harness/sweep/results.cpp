@@ -171,6 +171,28 @@ json caseSummary(const CaseResult& r) {
   return out;
 }
 
+// "terrain.source": what a file terrain was read from; null for generated terrains and for a case
+// that failed before reading it. Unknown fields are null, never left out.
+static json sourceJson(const Case& c, const TerrainSource& s) {
+  if (s.driver.empty()) return nullptr;
+  auto orNull = [](bool known, json v) { return known ? v : json(nullptr); };
+  const json& inputs = c.inputs.is_object() && c.inputs.contains("terrain") ? c.inputs["terrain"] : json();
+  return {{"driver", s.driver},
+          {"raster_size", {s.rasterWidth, s.rasterHeight}},
+          {"band", s.band},
+          {"data_type", s.dataType},
+          {"crs", orNull(!s.crs.empty(), s.crs)},
+          {"epsg", orNull(s.epsg != 0, s.epsg)},
+          {"geotransform", orNull(!s.geoTransform.empty(), s.geoTransform)},
+          {"nodata_count", s.nodataCount},
+          {"window", orNull(!s.window.empty(), s.window)},
+          {"overview", orNull(s.overview > 0, {{"level", s.overview}, {"method", s.overviewMethod}})},
+          {"extent", s.extent},
+          {"extent_source", s.extentSource},
+          // The digest the case's identity already took of the file (results/case_identity.h).
+          {"sha256", inputs.is_object() && inputs.contains("sha256") ? inputs["sha256"] : json(nullptr)}};
+}
+
 json caseJson(const Case& c, const CaseResult& r) {
   std::map<int, const FrameMetrics*> measured;
   for (auto& m : r.metrics) measured[m.frame] = &m;
@@ -221,8 +243,11 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"scheme", c.scheme},
           {"params", params},
           {"terrain", {{"type", c.terrain.type}, {"label", c.terrainLabel}, {"file", c.terrain.file},
-                       {"size", c.terrain.size}, {"seed", c.terrain.seed}, {"extent", c.terrain.extent},
-                       {"height_scale", c.terrain.heightScale}}},
+                       {"size", c.terrain.size}, {"seed", c.terrain.seed},
+                       // gdal without a config extent: the one derived from the file, once read
+                       {"extent", c.terrain.extent > 0 ? json(c.terrain.extent)
+                                  : r.terrainSource.driver.empty() ? json(nullptr) : json(r.terrainSource.extent)},
+                       {"height_scale", c.terrain.heightScale}, {"source", sourceJson(c, r.terrainSource)}}},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
           {"grid", c.grid},

@@ -9,6 +9,7 @@
 
 #include "render/renderer.h"
 #include "sweep/measure.h"
+#include "terrain/heightfield.h"
 
 namespace lb {
 
@@ -30,6 +31,7 @@ struct CaseResult {
   // Timing modes other than shaded (issue 13): mode -> frames in the order of `frames`.
   std::map<std::string, std::vector<FrameResult>> modeFrames;
   nlohmann::json calibration;  // clock-control calibration (null when off)
+  TerrainSource terrainSource;  // what the case's terrain was read from (driver "": generated or never read)
 };
 
 void writeFileAtomic(const std::string& path, const std::string& contents);

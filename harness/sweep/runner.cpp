@@ -84,6 +84,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
   Heightfield terrain = makeHeightfield(c.terrain);
   const double loadS = secondsSince(t0);  // run.json costs.terrains: the terrain load alone
+  result.terrainSource = terrain.source;  // the case file's terrain.source
   CameraPath path = loadCameraPath(c.path);
   RenderSettings settings{c.width, c.height, c.grid, config.testSlowdown};
   ParamValues params = c.params;

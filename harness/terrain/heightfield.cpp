@@ -233,10 +233,10 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
   };
   if (spec.type == "procedural") return placed(makeProcedural(spec));
   if (isGeneratedTerrain(spec.type)) return placed(makeGeneratedTerrain(spec));
-  if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f")
+  if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f" || spec.type == "gdal")
     return placed(loadHeightfield(spec));
   throw InputError("terrain: unknown type '" + spec.type +
-                   "' (valid types: procedural, hgt, png16, r16, r32f, spikes, cliff, flat, voids)");
+                   "' (valid types: procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids)");
 }
 
 }  // namespace lb

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "error.h"
+#include "terrain/gdal_loader.h"
 #include "terrain/heightfield.h"
+#include "terrain/void_fill.h"
 
 // The one stb_image implementation in the project (image_io.cpp owns stb_image_write's).
 // PNG only (the heightmaps here and the ray-cast cache's images): stb_image probes every format
@@ -44,47 +46,6 @@ Heightfield emptyField(const TerrainSpec& spec, int w, int h) {
   return hf;
 }
 
-// Fills voids breadth-first from the valid samples inwards: each ring takes the mean of its
-// already-known 4-neighbours. Rings are computed from a snapshot so the result does not depend
-// on scan order, and the whole fill is O(samples) however large the voids are.
-void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
-  std::vector<size_t> frontier, next;
-  auto pushVoidNeighbours = [&](size_t i, std::vector<size_t>& out, std::vector<char>& queued) {
-    const int x = int(i % size_t(w)), z = int(i / size_t(w));
-    const int nx[4] = {x - 1, x + 1, x, x}, nz[4] = {z, z, z - 1, z + 1};
-    for (int k = 0; k < 4; ++k) {
-      if (nx[k] < 0 || nx[k] >= w || nz[k] < 0 || nz[k] >= ht) continue;
-      const size_t j = size_t(nz[k]) * size_t(w) + size_t(nx[k]);
-      if (!known[j] && !queued[j]) {
-        queued[j] = 1;
-        out.push_back(j);
-      }
-    }
-  };
-  std::vector<char> queued(h.size(), 0);
-  for (size_t i = 0; i < h.size(); ++i)
-    if (known[i]) pushVoidNeighbours(i, frontier, queued);
-  std::vector<float> ring;
-  while (!frontier.empty()) {
-    ring.assign(frontier.size(), 0.0f);
-    for (size_t k = 0; k < frontier.size(); ++k) {
-      const size_t i = frontier[k];
-      const int x = int(i % size_t(w)), z = int(i / size_t(w));
-      float sum = 0.0f;
-      int count = 0;
-      if (x > 0 && known[i - 1]) sum += h[i - 1], ++count;
-      if (x + 1 < w && known[i + 1]) sum += h[i + 1], ++count;
-      if (z > 0 && known[i - size_t(w)]) sum += h[i - size_t(w)], ++count;
-      if (z + 1 < ht && known[i + size_t(w)]) sum += h[i + size_t(w)], ++count;
-      ring[k] = sum / float(count);  // count >= 1: frontier cells touch a known cell
-    }
-    for (size_t k = 0; k < frontier.size(); ++k) h[frontier[k]] = ring[k], known[frontier[k]] = 1;
-    next.clear();
-    for (size_t i : frontier) pushVoidNeighbours(i, next, queued);
-    frontier.swap(next);
-  }
-}
-
 // SRTM: no header; N x N big-endian int16 metres, first row = north edge, first column = west.
 // Orientation in lodbench: file row r becomes z = r and column c becomes x = c, so +x points east
 // and +z points south (north is at z = 0).
@@ -97,6 +58,7 @@ Heightfield decodeHgtSamples(const TerrainSpec& spec, const std::vector<unsigned
     if (m == kHgtVoid) {
       known[i] = 0;
       anyVoid = true;
+      ++hf.source.nodataCount;
     } else {
       hf.h[i] = float(m) * spec.heightScale;
       anyValid = true;
@@ -222,10 +184,27 @@ void checkHeights(const TerrainSpec& spec, const Heightfield& hf) {
                        "10x Earth's relief in metres): check the file type and height_scale");
 }
 
+// The case file's "terrain.source" for the built-in readers: no CRS, one band, the config's extent.
+void describeSource(const TerrainSpec& spec, Heightfield& hf) {
+  TerrainSource& s = hf.source;
+  s.driver = spec.type;
+  s.rasterWidth = hf.width;
+  s.rasterHeight = hf.height;
+  s.dataType = spec.type == "hgt" ? "Int16" : spec.type == "r32f" ? "Float32" : "UInt16";
+  s.extent = hf.extent;
+  s.extentSource = "config";
+}
+
 }  // namespace
 
 Heightfield loadHeightfield(const TerrainSpec& spec) {
   if (spec.file.empty()) throw InputError("terrain: type '" + spec.type + "' needs a file");
+  if (spec.type == "gdal") {
+    Heightfield hf = loadGdal(spec);
+    checkHeights(spec, hf);
+    hf.updateRange();
+    return hf;
+  }
   return decodeHeightfield(spec, readFile(spec.file));
 }
 
@@ -243,9 +222,12 @@ Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigne
     hf = loadRaw(spec, bytes, 2);
   else if (spec.type == "r32f")
     hf = loadRaw(spec, bytes, 4);
+  else if (spec.type == "gdal")  // GDAL reads files, not byte buffers
+    throw InputError(spec.file + ": type 'gdal' is read through loadHeightfield, from the file");
   else
-    throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f)");
+    throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f, gdal)");
   checkHeights(spec, hf);
+  describeSource(spec, hf);
   hf.updateRange();
   return hf;
 }
