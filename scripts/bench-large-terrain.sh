@@ -40,16 +40,18 @@ threadArgs=()
 extent=$(((size - 1) / 1024 * 1000))
 ((extent > 0)) || extent=1000
 schemes='[{"name": "errbound"}, {"name": "planefit"}, {"name": "density"}, {"name": "phong"}]'
-config() {  # config TERRAIN_JSON FILE
+config() {  # config TERRAIN_JSON FILE [SCHEMES_JSON]
   printf '{"name": "load-bench", "grid": 64, "terrain": %s,\n "paths": ["%s/configs/paths/flyover.csv"],\n "schemes": %s}\n' \
-    "$1" "$root" "$schemes" >"$2"
+    "$1" "$root" "${3:-$schemes}" >"$2"
 }
 stem=proc${size}-detail
 procedural="{\"type\": \"procedural\", \"size\": $size, \"seed\": 1, \"detail\": \"resolution\", \"extent\": $extent, \"height_scale\": 1500}"
 config "$procedural" "$data/$stem-procedural.json"
 if [[ $source != procedural && ! -s $data/$stem.f32 ]]; then
-  # The generator's heights as raw little-endian float32 (what --write-r32f writes).
-  "$lodbench" load-bench "$data/$stem-procedural.json" --write-r32f "$data/$stem.f32" "${threadArgs[@]}" >/dev/null
+  # The generator's heights as raw little-endian float32 (what --write-r32f writes); uniform has
+  # no preprocessing, so this run only generates.
+  config "$procedural" "$data/$stem-write.json" '[{"name": "uniform"}]'
+  "$lodbench" load-bench "$data/$stem-write.json" --write-r32f "$data/$stem.f32" "${threadArgs[@]}" >/dev/null
 fi
 case $source in
   procedural) cfg=$data/$stem-procedural.json ;;

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
@@ -33,24 +34,42 @@ std::vector<float> densityMap(const Heightfield& hf, float threshold, float scal
   std::vector<float> out(size_t(w) * size_t(h), kMinDensity);
   if (w < 3 || h < 3) return out;  // no interior sample has all eight neighbours
   const float range = hf.maxHeight - hf.minHeight;
-  auto height = [&](int x, int z) { return range > 0 ? (hf.at(x, z) - hf.minHeight) / range : 0.0f; };
-  // Rows are independent: bands on every hardware thread give the same map as one thread.
+  auto normalised = [&](float v) { return range > 0 ? (v - hf.minHeight) / range : 0.0f; };
+  // Rows are independent: bands on every hardware thread give the same map as one thread. Each
+  // band normalises a row once into a 3-row ring (rows cz - 1, cz, cz + 1) instead of every
+  // sample 9 times: the same function of the same sample, so the same floats.
   parallelRows(h, [&](int z0, int z1) {
-  for (int z = z0; z < z1; ++z)
-    for (int x = 0; x < w; ++x) {
-      const int cx = std::clamp(x, 1, w - 2), cz = std::clamp(z, 1, h - 2);  // border: nearest interior
-      const float c = height(cx, cz);
-      const float horizontal = variation(height(cx - 1, cz), c, height(cx + 1, cz));
-      const float vertical = variation(height(cx, cz - 1), c, height(cx, cz + 1));
-      const float firstDiagonal = variation(height(cx - 1, cz + 1), c, height(cx + 1, cz - 1));
-      const float secondDiagonal = variation(height(cx - 1, cz - 1), c, height(cx + 1, cz + 1));
-      float density = 0.0f;
-      if (horizontal >= threshold) density += kAxisWeight * horizontal;
-      if (vertical >= threshold) density += kAxisWeight * vertical;
-      if (firstDiagonal >= threshold) density += kDiagonalWeight * firstDiagonal;
-      if (secondDiagonal >= threshold) density += kDiagonalWeight * secondDiagonal;
-      density *= scale;
-      out[size_t(z) * size_t(w) + size_t(x)] = std::max(std::min(density, 1.0f), kMinDensity);
+    std::vector<float> ring(size_t(w) * 3);
+    int tag[3] = {-1, -1, -1};
+    auto row = [&](int r) {
+      float* dst = &ring[size_t(r % 3) * size_t(w)];
+      if (tag[r % 3] != r) {
+        const float* src = &hf.h[size_t(r) * size_t(w)];
+        for (int x = 0; x < w; ++x) dst[x] = normalised(src[x]);
+        tag[r % 3] = r;
+      }
+      return static_cast<const float*>(dst);
+    };
+    for (int z = z0; z < z1; ++z) {
+      const int cz = std::clamp(z, 1, h - 2);  // border: nearest interior
+      const float* up = row(cz - 1);
+      const float* mid = row(cz);
+      const float* down = row(cz + 1);
+      for (int x = 0; x < w; ++x) {
+        const int cx = std::clamp(x, 1, w - 2);
+        const float c = mid[cx];
+        const float horizontal = variation(mid[cx - 1], c, mid[cx + 1]);
+        const float vertical = variation(up[cx], c, down[cx]);
+        const float firstDiagonal = variation(down[cx - 1], c, up[cx + 1]);
+        const float secondDiagonal = variation(up[cx - 1], c, down[cx + 1]);
+        float density = 0.0f;
+        if (horizontal >= threshold) density += kAxisWeight * horizontal;
+        if (vertical >= threshold) density += kAxisWeight * vertical;
+        if (firstDiagonal >= threshold) density += kDiagonalWeight * firstDiagonal;
+        if (secondDiagonal >= threshold) density += kDiagonalWeight * secondDiagonal;
+        density *= scale;
+        out[size_t(z) * size_t(w) + size_t(x)] = std::max(std::min(density, 1.0f), kMinDensity);
+      }
     }
   });
   return out;

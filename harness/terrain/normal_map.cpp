@@ -48,15 +48,23 @@ NormalMap computeNormalMap(const Heightfield& hf) {
   // As common.glsl terrainNormal() at a sample point: neighbours one texel apart, clamped to the border.
   const float tx = hf.extent / float(std::max(hf.width - 1, 1)), tz = hf.extent / float(std::max(hf.height - 1, 1));
   // Rows are independent: bands on every hardware thread give the same texels as one thread.
-  parallelRows(hf.height, [&](int z0, int z1) {
-    for (int z = z0; z < z1; ++z)
-      for (int x = 0; x < hf.width; ++x) {
-        float gx = (hf.at(x - 1, z) - hf.at(x + 1, z)) / (2.0f * tx);
-        float gz = (hf.at(x, z - 1) - hf.at(x, z + 1)) / (2.0f * tz);
-        size_t i = (size_t(z) * size_t(hf.width) + size_t(x)) * 2;
-        nm.texels[i] = floatToHalf(gx);
-        nm.texels[i + 1] = floatToHalf(gz);
+  // Neighbours are read through row pointers with the border clamp of Heightfield::at() done once
+  // per row and column, not per read: the same samples, so the same texels.
+  const int w = hf.width, h = hf.height;
+  parallelRows(h, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z) {
+      const float* row = &hf.h[size_t(z) * size_t(w)];
+      const float* up = &hf.h[size_t(std::max(z - 1, 0)) * size_t(w)];
+      const float* down = &hf.h[size_t(std::min(z + 1, h - 1)) * size_t(w)];
+      uint16_t* out = &nm.texels[size_t(z) * size_t(w) * 2];
+      for (int x = 0; x < w; ++x) {
+        const int left = x > 0 ? x - 1 : 0, right = x + 1 < w ? x + 1 : w - 1;
+        float gx = (row[left] - row[right]) / (2.0f * tx);
+        float gz = (up[x] - down[x]) / (2.0f * tz);
+        out[2 * size_t(x)] = floatToHalf(gx);
+        out[2 * size_t(x) + 1] = floatToHalf(gz);
       }
+    }
   });
   return nm;
 }
