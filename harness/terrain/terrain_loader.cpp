@@ -71,14 +71,18 @@ Heightfield decodeHgtSamples(const TerrainSpec& spec, const std::vector<unsigned
   return hf;
 }
 
+// SRTM tiles are 1201^2 (3") or 3601^2 (1"), but a crop of one (tests/data) keeps the format at
+// another side, so any square grid of int16 samples is accepted; the side follows from the size.
 Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
-  int n = 0;
-  for (int candidate : {1201, 3601})
-    if (bytes.size() == size_t(candidate) * size_t(candidate) * 2) n = candidate;
-  if (n == 0)
+  const size_t samples = bytes.size() / 2;
+  size_t n = size_t(std::llround(std::sqrt(double(samples))));
+  while (n * n > samples) --n;
+  while ((n + 1) * (n + 1) <= samples) ++n;
+  if (bytes.size() % 2 != 0 || n * n != samples || n < 2 || n > size_t(kMaxPngSide))
     throw InputError(spec.file + ": size " + std::to_string(bytes.size()) +
-                     " bytes is not 1201^2 or 3601^2 int16 samples");
-  return decodeHgtSamples(spec, bytes, n);
+                     " bytes is not N^2 int16 samples with 2 <= N <= " + std::to_string(kMaxPngSide) +
+                     " (SRTM tiles are 1201^2 or 3601^2)");
+  return decodeHgtSamples(spec, bytes, int(n));
 }
 
 // stb_image memcpy()s from a null pointer on a zero-length IDAT chunk (undefined behaviour that

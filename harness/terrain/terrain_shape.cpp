@@ -7,6 +7,7 @@
 #include <stb/stb_image.h>  // declarations only; terrain_loader.cpp holds the implementation
 
 #include "error.h"
+#include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
 
 namespace lb {
@@ -28,9 +29,11 @@ TerrainShape terrainShape(const TerrainSpec& spec) {
     if (!stbi_info(spec.file.c_str(), &w, &h, &comp)) throw InputError(spec.file + ": cannot read PNG header");
     return {w, h};
   }
-  // The other loaders read the whole file: take the size from what they produce.
-  const Heightfield hf = makeHeightfield(spec);
-  return {hf.width, hf.height};
+  if (spec.type == "gdal") {
+    const auto [w, h] = gdalTerrainSize(spec);
+    return {w, h};
+  }
+  throw InputError(spec.file + ": '" + spec.type + "' is not a terrain type");
 }
 
 }  // namespace lb
