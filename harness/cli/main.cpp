@@ -57,9 +57,11 @@ struct RenderArgs {
   std::vector<std::string> params;
   int frame = 0, width = 640, height = 360, grid = 32, size = 513;
   int terrainWidth = 0, terrainHeight = 0;  // r16 / r32f: samples per row and rows
+  int band = 0, overview = 0;                // gdal (the config's terrain 'band', 'overview', 'window')
+  std::vector<int> window;
   bool sizeOrSeedGiven = false;
   unsigned seed = 1;
-  double fps = 30, extent = 1000, heightScale = -1;
+  double fps = 30, extent = -1, heightScale = -1;  // extent < 0: 1000, or gdal's from the file
   bool wireframe = false, heatmap = false, error = false, cracks = false, validation = false;
 };
 
@@ -69,10 +71,13 @@ static TerrainSpec renderTerrain(const RenderArgs& a) {
   TerrainSpec spec;
   spec.type = a.terrainType;
   const bool procedural = spec.type == "procedural", raw = spec.type == "r16" || spec.type == "r32f";
-  if (!procedural && spec.type != "hgt" && spec.type != "png16" && !raw)
-    throw InputError("--terrain '" + printable(spec.type) + "': not one of procedural, hgt, png16, r16, r32f");
+  const bool gdal = spec.type == "gdal";
+  if (!procedural && spec.type != "hgt" && spec.type != "png16" && !raw && !gdal)
+    throw InputError("--terrain '" + printable(spec.type) + "': not one of procedural, hgt, png16, r16, r32f, gdal");
   if (procedural && !a.terrainFile.empty())
-    throw InputError("--terrain-file needs a file terrain type (--terrain hgt|png16|r16|r32f); procedural terrains are generated");
+    throw InputError("--terrain-file needs a file terrain type (--terrain hgt|png16|r16|r32f|gdal); procedural terrains are generated");
+  if (!gdal && (a.band != 0 || a.overview != 0 || !a.window.empty()))
+    throw InputError("--band, --window and --overview apply to --terrain gdal only");
   if (!procedural && a.terrainFile.empty()) throw InputError("--terrain " + spec.type + " needs --terrain-file FILE");
   if (!procedural && a.sizeOrSeedGiven)
     throw InputError("--size and --seed apply to procedural terrains only (--terrain " + spec.type + " reads its file)");
@@ -85,7 +90,10 @@ static TerrainSpec renderTerrain(const RenderArgs& a) {
   spec.seed = a.seed;
   spec.rawWidth = a.terrainWidth;
   spec.rawHeight = a.terrainHeight;
-  spec.extent = float(a.extent);
+  spec.extent = a.extent >= 0 ? float(a.extent) : gdal ? 0.0f : 1000.0f;  // gdal: 0 = from the georeferencing
+  spec.band = a.band;
+  spec.window = a.window;
+  spec.overview = a.overview;
   if (!procedural) spec.heightScale = 1.0f;
   if (a.heightScale >= 0) spec.heightScale = float(a.heightScale);
   return spec;
@@ -228,7 +236,7 @@ int main(int argc, char** argv) {
   render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--height", ra.height, "Image height")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--grid", ra.grid, "Patches per side")->capture_default_str()->check(CLI::Range(1, 1024));
-  render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f")->capture_default_str();
+  render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f | gdal")->capture_default_str();
   render->add_option("--terrain-file", ra.terrainFile, "Heightmap file for non-procedural terrains");
   render->add_option("--terrain-width", ra.terrainWidth, "r16 / r32f: samples per row (the config's terrain 'width')")
       ->check(CLI::Range(2, 65536));
@@ -236,7 +244,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 65536));
   render->add_option("--size", ra.size, "Procedural terrain samples per side")->capture_default_str()->check(CLI::Range(2, 16385));
   render->add_option("--seed", ra.seed, "Procedural terrain seed")->capture_default_str();
-  render->add_option("--extent", ra.extent, "World extent of the terrain")->capture_default_str()->check(finite(1e-3, 1e9));
+  render->add_option("--extent", ra.extent, "World extent of the terrain (default 1000; gdal: from the file's georeferencing)")
+      ->check(finite(1e-3, 1e9));
+  render->add_option("--band", ra.band, "gdal: raster band, 1-based (needed for a multi-band file)")->check(CLI::Range(1, 65535));
+  render->add_option("--window", ra.window, "gdal: X Y W H pixel rectangle to read")->expected(4);
+  render->add_option("--overview", ra.overview, "gdal: the file's overview level k (else a 2^k average)")->check(CLI::Range(1, 30));
   render->add_option("--height-scale", ra.heightScale,
                      "Height scale (procedural: peak height, default 120; files: multiplier on the stored values, default 1)")
       ->check(finite(0, 1e9));
