@@ -315,23 +315,43 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
       for (int e = 0; e < 4; ++e) edgeTriangles(L, E, e, tri);
     perLevel.push_back(levelWork(tri));
   }
+  // Levels share edges too (a strip's outer row at edge level E is the same at every level <= E):
+  // each patch computes every distinct edge once, and each level takes the maximum over its own.
+  std::vector<std::array<dvec2, 2>> allEdges;
+  for (const LevelWork& w : perLevel) allEdges.insert(allEdges.end(), w.edges.begin(), w.edges.end());
+  sortUnique(allEdges);
+  std::vector<std::vector<uint32_t>> levelEdges(perLevel.size());
+  for (size_t k = 0; k < perLevel.size(); ++k)
+    for (const auto& e : perLevel[k].edges)
+      levelEdges[k].push_back(uint32_t(std::lower_bound(allEdges.begin(), allEdges.end(), e, lessPoints<2>) - allEdges.begin()));
+  // The same for triangles (level 0's fans and level 1's strips share some).
+  std::vector<std::array<dvec2, 3>> allTriangles;
+  for (const LevelWork& w : perLevel) allTriangles.insert(allTriangles.end(), w.triangles.begin(), w.triangles.end());
+  sortUnique(allTriangles);
+  std::vector<std::vector<uint32_t>> levelTriangles(perLevel.size());
+  for (size_t k = 0; k < perLevel.size(); ++k)
+    for (const auto& tr : perLevel[k].triangles)
+      levelTriangles[k].push_back(
+          uint32_t(std::lower_bound(allTriangles.begin(), allTriangles.end(), tr, lessPoints<3>) - allTriangles.begin()));
   const double sx = double(hf.width - 1) / grid, sz = double(hf.height - 1) / grid;
   std::atomic<int> next{0};
   auto work = [&] {
+    std::vector<double> edgeDev(allEdges.size()), triangleDev(allTriangles.size());
     for (int p; (p = next++) < grid * grid;) {
       dvec2 origin((p % grid) * sx, (p / grid) * sz);
       auto tex = [&](dvec2 uv) { return origin + dvec2(uv.x * sx, uv.y * sz); };
+      for (size_t i = 0; i < allEdges.size(); ++i) {
+        const dvec2 a = tex(allEdges[i][0]), b = tex(allEdges[i][1]);
+        edgeDev[i] = edgeDeviation(hf, a, b, heightAt(hf, a), heightAt(hf, b));
+      }
+      for (size_t i = 0; i < allTriangles.size(); ++i) {
+        const dvec2 a = tex(allTriangles[i][0]), b = tex(allTriangles[i][1]), c = tex(allTriangles[i][2]);
+        triangleDev[i] = interiorDeviation(hf, a, b, c, heightAt(hf, a), heightAt(hf, b), heightAt(hf, c));
+      }
       for (int k = 0; k < kErrboundLevels; ++k) {
-        const LevelWork& w = perLevel[size_t(k)];
         double worst = 0;
-        for (const auto& e : w.edges) {
-          const dvec2 a = tex(e[0]), b = tex(e[1]);
-          worst = std::max(worst, edgeDeviation(hf, a, b, heightAt(hf, a), heightAt(hf, b)));
-        }
-        for (const auto& tr : w.triangles) {
-          const dvec2 a = tex(tr[0]), b = tex(tr[1]), c = tex(tr[2]);
-          worst = std::max(worst, interiorDeviation(hf, a, b, c, heightAt(hf, a), heightAt(hf, b), heightAt(hf, c)));
-        }
+        for (uint32_t i : levelEdges[size_t(k)]) worst = std::max(worst, edgeDev[i]);
+        for (uint32_t i : levelTriangles[size_t(k)]) worst = std::max(worst, triangleDev[i]);
         // Rounded up so the float the shader reads never undercuts the double bound.
         t.dev[size_t(p) * kErrboundLevels + size_t(k)] = std::nextafter(float(worst), INFINITY);
       }
