@@ -556,6 +556,11 @@ TEST(GdalConfig, FieldsLabelsAndIdentity) {
   EXPECT_EQ(t0["source"]["extent_source"], "projected");
   EXPECT_EQ(t0["source"]["nodata_count"], 1);
   EXPECT_TRUE(lb::caseJson(cases[0], lb::CaseResult{})["terrain"]["source"].is_null());  // never read
+  // Generated terrains have no source, "voids" (written to a temporary .hgt and read back) included.
+  TerrainSpec voids;
+  voids.type = "voids";
+  voids.heightScale = 1.0f;  // metres, as the config parser sets for this type
+  EXPECT_TRUE(lb::makeHeightfield(voids).source.driver.empty());
 }
 
 TEST(GdalConfig, FieldsOfOtherTypesAreRefused) {

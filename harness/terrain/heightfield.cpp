@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "error.h"
@@ -232,7 +233,11 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
     return hf;
   };
   if (spec.type == "procedural") return placed(makeProcedural(spec));
-  if (isGeneratedTerrain(spec.type)) return placed(makeGeneratedTerrain(spec));
+  if (isGeneratedTerrain(spec.type)) {
+    Heightfield hf = makeGeneratedTerrain(spec);
+    hf.source = TerrainSource{};  // "voids" goes through a temporary .hgt file: still a generated terrain
+    return placed(std::move(hf));
+  }
   if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f" || spec.type == "gdal")
     return placed(loadHeightfield(spec));
   throw InputError("terrain: unknown type '" + spec.type +
