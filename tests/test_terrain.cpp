@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "dem_crop.h"
 #include "error.h"
 #include "terrain/heightfield.h"
 
@@ -388,16 +389,15 @@ TEST(Terrain, UnknownTypeListsValidTypes) {
   EXPECT_NE(msg.find("procedural, hgt, png16, r16, r32f, gdal"), std::string::npos) << msg;
 }
 
-TEST(Terrain, RealSrtmTile) {
-  TerrainSpec s = fileSpec("hgt", "");
-  s.file = std::string(LODBENCH_SOURCE_DIR) + "/../shared/data/N44W072.hgt";
-  if (!std::ifstream(s.file).good()) GTEST_SKIP() << s.file << " not present";
+// The committed crop (tests/data/README.md): columns and rows 600-1200 of N44W072, which hold both
+// the tile's lowest (115 m) and highest (1908 m, Mount Washington) samples.
+TEST(Terrain, RealSrtmCrop) {
+  TerrainSpec s = lbtest::demCrop();
   s.heightScale = 1.0f;
-  s.extent = 1201.0f * 90.0f;
   const Heightfield hf = lb::makeHeightfield(s);
-  EXPECT_EQ(hf.width, 1201);
-  EXPECT_EQ(hf.height, 1201);
+  EXPECT_EQ(hf.width, 601);
+  EXPECT_EQ(hf.height, 601);
   EXPECT_EQ(hf.minHeight, 115.0f);
   EXPECT_EQ(hf.maxHeight, 1908.0f);
-  EXPECT_EQ(hf.at(0, 0), 413.0f);  // north-west corner is the first sample of the file
+  EXPECT_EQ(hf.at(0, 0), 313.0f);  // north-west corner is the first sample of the file
 }

@@ -11,11 +11,13 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "camera/camera_path.h"
 #include "error.h"
 #include "metrics/cracks.h"
 #include "render/image_io.h"
+#include "render/terrain_fit.h"
 #include "sweep/case_images.h"
 #include "schemes/registry.h"
 #include "results/run_dir.h"
@@ -24,6 +26,7 @@
 #include "sweep/timing_passes.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
+#include "vk/device_limits.h"
 
 namespace lb {
 
@@ -228,12 +231,17 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     plan = checkResume(totals.dir, previous, config.raw, options.shardIndex, options.shardCount, cases,
                        options.rerunChanged);
   }
-  fs::create_directories(totals.dir + "/cases");
-  fs::create_directories(totals.dir + "/images");
-  removeStaleTemps(totals.dir);
   Context ctx;
   createContext(ctx, {config.device, options.validation});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
+  // Every terrain of this shard against the device's limits, before anything is written.
+  const DeviceLimits limits = deviceLimits(ctx.physicalDevice);
+  std::set<std::string> checked;
+  for (const Case& c : cases)
+    if (checked.insert(c.terrainLabel).second) checkTerrainFits(limits, c.terrain, c.terrainLabel);
+  fs::create_directories(totals.dir + "/cases");
+  fs::create_directories(totals.dir + "/images");
+  removeStaleTemps(totals.dir);
   json context = runContext(ctx, config);
   json ids = json::array();
   for (auto& c : cases) ids.push_back(c.id);

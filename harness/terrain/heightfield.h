@@ -74,7 +74,8 @@ constexpr float kMaxAbsHeight = 1e5f;
 
 // Deterministic ridged + fBm hybrid (Musgrave) in [0,1], scaled by heightScale. Same seed -> same bits.
 Heightfield makeProcedural(const TerrainSpec& spec);
-// Loads .hgt (SRTM big-endian int16, 1201^2 or 3601^2, voids -32768 filled), 16-bit PNG, raw R16 / R32F.
+// Loads .hgt (SRTM big-endian int16, N^2 samples: 1201^2 or 3601^2 tiles or crops of them; voids
+// -32768 filled), 16-bit PNG, raw R16 / R32F
 // and any raster GDAL reads (type gdal, terrain/gdal_loader.h).
 // Every type means "stored value x heightScale". Throws lb::InputError naming the file and the
 // problem (wrong size, non-finite sample, |height| > kMaxAbsHeight, ...).
@@ -82,7 +83,7 @@ Heightfield loadHeightfield(const TerrainSpec& spec);
 // The same from the file's bytes (spec.file only names it in messages); the fuzz targets call this.
 Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigned char>& bytes);
 // The .hgt decoder of decodeHeightfield (samples, voids and their fill, height checks) for a grid
-// of any side >= 2, where SRTM files are only 1201^2 or 3601^2: lets the hgt fuzz target
+// of any side >= 2 without the file-size rule: lets the hgt fuzz target
 // (tests/fuzz) explore the decoder with small inputs instead of 2.9 MB tiles.
 Heightfield decodeHgtGrid(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, int side);
 // Dispatches on spec.type.
