@@ -32,6 +32,12 @@ inline int floorToInt(double v) {
   return v < double(i) ? i - 1 : i;
 }
 
+// int(std::ceil(v)) likewise (per row of every triangle's interior scan).
+inline int ceilToInt(double v) {
+  const int i = int(v);
+  return v > double(i) ? i + 1 : i;
+}
+
 inline Cell cellAt(const Heightfield& hf, dvec2 p) {
   Cell c;
   c.x = std::clamp(floorToInt(p.x), 0, std::max(hf.width - 2, 0));
@@ -137,7 +143,7 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
   // Samples inside, row by row (cost follows the triangle's area, not its bounding box).
   dvec2 v[3] = {a, b, c};
   double zlo = std::max(0.0, std::min({a.y, b.y, c.y})), zhi = std::min(double(hf.height - 1), std::max({a.y, b.y, c.y}));
-  for (int z = int(std::ceil(zlo)); z <= int(std::floor(zhi)); ++z) {
+  for (int z = ceilToInt(zlo), zEnd = floorToInt(zhi); z <= zEnd; ++z) {
     double xlo = INFINITY, xhi = -INFINITY;
     for (int e = 0; e < 3; ++e) {
       dvec2 p = v[e], q = v[(e + 1) % 3];
@@ -153,7 +159,7 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
     }
     xlo = std::max(xlo, 0.0);
     xhi = std::min(xhi, double(hf.width - 1));
-    const int x0 = int(std::ceil(xlo)), x1 = int(std::floor(xhi));
+    const int x0 = ceilToInt(xlo), x1 = floorToInt(xhi);
     if (x0 > x1) continue;
     // z is in [0, height - 1] and x in [0, width - 1] here: the row is indexed directly.
     const float* row = &hf.h[size_t(z) * size_t(hf.width)];
