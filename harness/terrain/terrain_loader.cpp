@@ -11,6 +11,7 @@
 #include "error.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 #include "terrain/void_fill.h"
 
 // The one stb_image implementation in the project (image_io.cpp owns stb_image_write's).
@@ -32,8 +33,14 @@ std::vector<unsigned char> readFile(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a heightmap file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open " + path);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path + ": read error");
+  // One read of the known size: a 1 GiB raw terrain took 4.6 s through a stream iterator.
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size < 0 || !in) throw InputError(path + ": cannot tell the file's size");
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes.data()), size);
+  if (in.gcount() != size) throw InputError(path + ": read error");
   return bytes;
 }
 
@@ -91,7 +98,8 @@ Heightfield loadHgt(const TerrainSpec& spec, const std::vector<unsigned char>& b
 // Returns the total length of the IDAT chunks (the compressed image).
 size_t rejectEmptyIdat(const TerrainSpec& spec, const std::vector<unsigned char>& bytes) {
   auto be32 = [&](size_t at) {
-    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 |
+           uint32_t(bytes[at + 3]);
   };
   size_t idat = 0;
   if (bytes.size() < 8 || std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) != 0)
@@ -152,29 +160,35 @@ Heightfield loadPng16(const TerrainSpec& spec, const std::vector<unsigned char>&
 // Raw dumps carry no header, so the user supplies the size and it must match the file exactly.
 Heightfield loadRaw(const TerrainSpec& spec, const std::vector<unsigned char>& bytes, size_t bytesPerSample) {
   if (spec.rawWidth < 2 || spec.rawHeight < 2)
-    throw InputError(spec.file + ": " + spec.type + " needs a width and height of at least 2 samples (config: terrain " +
+    throw InputError(spec.file + ": " + spec.type +
+                     " needs a width and height of at least 2 samples (config: terrain " +
                      "'width' and 'height'; render: --terrain-width and --terrain-height), got " +
                      std::to_string(spec.rawWidth) + "x" + std::to_string(spec.rawHeight));
   const size_t expected = size_t(spec.rawWidth) * size_t(spec.rawHeight) * bytesPerSample;
   if (bytes.size() != expected)
-    throw InputError(spec.file + ": expected " + std::to_string(spec.rawWidth) + "*" +
-                     std::to_string(spec.rawHeight) + "*" + std::to_string(bytesPerSample) + " = " +
-                     std::to_string(expected) + " bytes, got " + std::to_string(bytes.size()));
+    throw InputError(spec.file + ": expected " + std::to_string(spec.rawWidth) + "*" + std::to_string(spec.rawHeight) +
+                     "*" + std::to_string(bytesPerSample) + " = " + std::to_string(expected) + " bytes, got " +
+                     std::to_string(bytes.size()));
   Heightfield hf = emptyField(spec, spec.rawWidth, spec.rawHeight);
-  for (size_t i = 0; i < hf.h.size(); ++i) {
-    const unsigned char* p = &bytes[i * bytesPerSample];
-    if (bytesPerSample == 2) {
-      hf.h[i] = float(uint16_t(p[0] | p[1] << 8)) * spec.heightScale;
-    } else {
-      const uint32_t u = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-      float v;
-      std::memcpy(&v, &u, sizeof v);
-      if (!std::isfinite(v))
-        throw InputError(spec.file + ": sample (" + std::to_string(i % size_t(spec.rawWidth)) + ", " +
-                         std::to_string(i / size_t(spec.rawWidth)) + ") is not a finite number");
-      hf.h[i] = v * spec.heightScale;
+  // Row bands in parallel; a band stops at its first non-finite sample and parallelRows rethrows
+  // the lowest band's error, so the message names the file's first one whatever the thread count.
+  const size_t w = size_t(spec.rawWidth);
+  parallelRows(spec.rawHeight, [&](int r0, int r1) {
+    for (size_t i = size_t(r0) * w; i < size_t(r1) * w; ++i) {
+      const unsigned char* p = &bytes[i * bytesPerSample];
+      if (bytesPerSample == 2) {
+        hf.h[i] = float(uint16_t(p[0] | p[1] << 8)) * spec.heightScale;
+      } else {
+        const uint32_t u = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+        float v;
+        std::memcpy(&v, &u, sizeof v);
+        if (!std::isfinite(v))
+          throw InputError(spec.file + ": sample (" + std::to_string(i % size_t(spec.rawWidth)) + ", " +
+                           std::to_string(i / size_t(spec.rawWidth)) + ") is not a finite number");
+        hf.h[i] = v * spec.heightScale;
+      }
     }
-  }
+  });
   return hf;
 }
 
@@ -216,7 +230,8 @@ Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigne
   if (!(std::isfinite(spec.extent) && spec.extent > 0.0f))
     throw InputError(spec.file + ": terrain extent " + std::to_string(spec.extent) + " must be positive and finite");
   if (!(std::isfinite(spec.heightScale) && spec.heightScale >= 0.0f))
-    throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) + " must be finite and >= 0");
+    throw InputError(spec.file + ": terrain heightScale " + std::to_string(spec.heightScale) +
+                     " must be finite and >= 0");
   Heightfield hf;
   if (spec.type == "hgt")
     hf = loadHgt(spec, bytes);
@@ -229,7 +244,8 @@ Heightfield decodeHeightfield(const TerrainSpec& spec, const std::vector<unsigne
   else if (spec.type == "gdal")  // GDAL reads files, not byte buffers
     throw InputError(spec.file + ": type 'gdal' is read through loadHeightfield, from the file");
   else
-    throw InputError(spec.file + ": '" + spec.type + "' is not a terrain file type (valid: hgt, png16, r16, r32f, gdal)");
+    throw InputError(spec.file + ": '" + spec.type +
+                     "' is not a terrain file type (valid: hgt, png16, r16, r32f, gdal)");
   checkHeights(spec, hf);
   describeSource(spec, hf);
   hf.updateRange();
