@@ -12,6 +12,7 @@
 #include "error.h"
 #include "number_text.h"
 #include "results/case_identity.h"
+#include "terrain/terrain_cache.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
 #include "schemes/registry.h"
@@ -141,7 +142,7 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
   // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
   if (!procedural) {
     try {
-      loadHeightfield(spec);
+      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
     } catch (const InputError& e) {
       r.fail(ptr + "/file", e.what());
     }

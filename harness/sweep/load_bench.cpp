@@ -16,6 +16,7 @@
 #include "schemes/registry.h"
 #include "sweep/config.h"
 #include "sweep/results.h"
+#include "terrain/terrain_cache.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
@@ -178,9 +179,11 @@ int loadBenchCommand(const LoadBenchOptions& o) {
     const TerrainSpec& spec = config.terrains[ti];
     std::vector<Stage> stages;
     if (ti == 0) stages.push_back(parse);
-    Heightfield hf;
-    stages.push_back(timeStage("load", [&] { hf = makeHeightfield(spec); },
-                               [&] { return fingerprint(hf.h.data(), hf.h.size() * sizeof(float)); }));
+    // As a sweep gets it: a file the config stage read (and kept, when large) is not read again.
+    std::shared_ptr<const Heightfield> held;
+    stages.push_back(timeStage("load", [&] { held = sharedHeightfield(spec); },
+                               [&] { return fingerprint(held->h.data(), held->h.size() * sizeof(float)); }));
+    const Heightfield& hf = *held;
     if (ti == 0 && !o.writeR32f.empty()) writeRaw(o.writeR32f, hf);
     // Each output is dropped after its stage, as the renderer drops it after the upload.
     NormalMap nm;

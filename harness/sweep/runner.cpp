@@ -25,6 +25,7 @@
 #include "sweep/progress.h"
 #include "sweep/timing_passes.h"
 #include "terrain/heightfield.h"
+#include "terrain/terrain_cache.h"
 #include "vk/context.h"
 #include "vk/device_limits.h"
 
@@ -85,7 +86,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   CaseResult result;
   const Scheme* scheme = findScheme(c.scheme);
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
-  Heightfield terrain = makeHeightfield(c.terrain);
+  const std::shared_ptr<const Heightfield> heldTerrain = sharedHeightfield(c.terrain);
+  const Heightfield& terrain = *heldTerrain;
   const double loadS = secondsSince(t0);  // run.json costs.terrains: the terrain load alone
   result.terrainSource = terrain.source;  // the case file's terrain.source
   CameraPath path = loadCameraPath(c.path);
