@@ -4,6 +4,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <thread>
 
 #include "terrain/heightfield.h"
@@ -90,13 +91,14 @@ struct Crossings {
   }
 };
 
-// Largest |B - chord| along segment p->q, where the chord interpolates B(p), B(q) linearly.
-double edgeDeviation(const Heightfield& hf, dvec2 p, dvec2 q, double hp, double hq) {
+// The pieces of segment p->q inside one heightfield cell each: calls piece(t0, t1, cell) for
+// consecutive breakpoints t0 < t1 (0, 1 and both axes' grid-line crossings, in increasing order:
+// a three-way merge of sorted sequences is the sorted list a sort of all of them gives; values,
+// not positions, matter), with the cell that holds the piece's midpoint.
+template <class Piece>
+inline void edgePieces(const Heightfield& hf, dvec2 p, dvec2 q, Piece&& piece) {
   dvec2 d = q - p;
-  // The breakpoints 0, 1 and both axes' crossings in increasing order: a three-way merge of
-  // sorted sequences is the sorted list a sort of all of them gives (values, not positions, matter).
   Crossings cx(p.x, q.x), cz(p.y, q.y);
-  double worst = 0;
   double t0 = 0.0;
   bool endDone = false;
   while (!endDone) {
@@ -112,21 +114,37 @@ double edgeDeviation(const Heightfield& hf, dvec2 p, dvec2 q, double hp, double 
       t1 = 1.0;
       endDone = true;
     }
-    if (t1 > t0) {
-      Cell c = cellAt(hf, p + d * (0.5 * (t0 + t1)));
-      auto dev = [&](double t) { return c.at(p + d * t) - (hp + t * (hq - hp)); };
-      worst = std::max({worst, std::abs(dev(t0)), std::abs(dev(t1))});
-      double tw = c.h00 - c.h10 - c.h01 + c.h11;
-      double quad = tw * d.x * d.y;  // t^2 coefficient of B along the segment
-      if (quad != 0.0) {
-        double fx0 = p.x - c.x, fz0 = p.y - c.z;
-        double lin = (c.h10 - c.h00) * d.x + (c.h01 - c.h00) * d.y + tw * (d.x * fz0 + fx0 * d.y) - (hq - hp);
-        double ts0 = -lin / (2.0 * quad);
-        if (ts0 > t0 && ts0 < t1) worst = std::max(worst, std::abs(dev(ts0)));
-      }
-    }
+    if (t1 > t0) piece(t0, t1, cellAt(hf, p + d * (0.5 * (t0 + t1))));
     t0 = std::max(t0, t1);
   }
+}
+
+// Largest |B - chord| over one piece [t0, t1] of segment p + d t inside cell (x, z) with corner
+// heights h00..h11, where the chord runs from hp to hq: both ends and, when inside, the
+// stationary point of the quadratic.
+inline double pieceDeviation(double px, double py, double dx, double dy, double hp, double hq, double t0, double t1,
+                             double x, double z, double h00, double h10, double h01, double h11) {
+  const double tw = h00 - h10 - h01 + h11;
+  auto dev = [&](double t) {
+    const double fx = (px + dx * t) - x, fz = (py + dy * t) - z;
+    return (h00 + (h10 - h00) * fx + (h01 - h00) * fz + tw * fx * fz) - (hp + t * (hq - hp));
+  };
+  const double ends = std::max(std::abs(dev(t0)), std::abs(dev(t1)));
+  const double quad = tw * dx * dy;  // t^2 coefficient of B along the segment
+  if (quad == 0.0) return ends;
+  const double fx0 = px - x, fz0 = py - z;
+  const double lin = (h10 - h00) * dx + (h01 - h00) * dy + tw * (dx * fz0 + fx0 * dy) - (hq - hp);
+  const double ts0 = -lin / (2.0 * quad);
+  return ts0 > t0 && ts0 < t1 ? std::max(ends, std::abs(dev(ts0))) : ends;
+}
+
+// Largest |B - chord| along segment p->q, where the chord interpolates B(p), B(q) linearly.
+double edgeDeviation(const Heightfield& hf, dvec2 p, dvec2 q, double hp, double hq) {
+  const dvec2 d = q - p;
+  double worst = 0;
+  edgePieces(hf, p, q, [&](double t0, double t1, const Cell& c) {
+    worst = std::max(worst, pieceDeviation(p.x, p.y, d.x, d.y, hp, hq, t0, t1, c.x, c.z, c.h00, c.h10, c.h01, c.h11));
+  });
   return worst;
 }
 
@@ -339,20 +357,42 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
     for (const auto& tr : perLevel[k].triangles)
       levelTriangles[k].push_back(
           uint32_t(std::lower_bound(allTriangles.begin(), allTriangles.end(), tr, lessPoints<3>) - allTriangles.begin()));
+  // Edges and triangles share their vertices: each patch computes a vertex's texel position
+  // and height once (the same expressions on the same (u, v), so the same bits as per use).
+  std::vector<dvec2> allVertices;
+  for (const auto& e : allEdges) allVertices.insert(allVertices.end(), e.begin(), e.end());
+  for (const auto& tr : allTriangles) allVertices.insert(allVertices.end(), tr.begin(), tr.end());
+  auto lessVertex = [](dvec2 l, dvec2 r) { return l.x != r.x ? l.x < r.x : l.y < r.y; };
+  std::sort(allVertices.begin(), allVertices.end(), lessVertex);
+  allVertices.erase(std::unique(allVertices.begin(), allVertices.end()), allVertices.end());
+  auto vertexIndex = [&](dvec2 v) {
+    return uint32_t(std::lower_bound(allVertices.begin(), allVertices.end(), v, lessVertex) - allVertices.begin());
+  };
+  std::vector<std::array<uint32_t, 2>> edgeVertices;
+  for (const auto& e : allEdges) edgeVertices.push_back({vertexIndex(e[0]), vertexIndex(e[1])});
+  std::vector<std::array<uint32_t, 3>> triangleVertices;
+  for (const auto& tr : allTriangles) triangleVertices.push_back({vertexIndex(tr[0]), vertexIndex(tr[1]), vertexIndex(tr[2])});
   const double sx = double(hf.width - 1) / grid, sz = double(hf.height - 1) / grid;
   std::atomic<int> next{0};
   auto work = [&] {
     std::vector<double> edgeDev(allEdges.size()), triangleDev(allTriangles.size());
+    std::vector<dvec2> vertexTex(allVertices.size());
+    std::vector<double> vertexHeight(allVertices.size());
     for (int p; (p = next++) < grid * grid;) {
       dvec2 origin((p % grid) * sx, (p / grid) * sz);
-      auto tex = [&](dvec2 uv) { return origin + dvec2(uv.x * sx, uv.y * sz); };
+      for (size_t v = 0; v < allVertices.size(); ++v) {
+        vertexTex[v] = origin + dvec2(allVertices[v].x * sx, allVertices[v].y * sz);
+        vertexHeight[v] = heightAt(hf, vertexTex[v]);
+      }
       for (size_t i = 0; i < allEdges.size(); ++i) {
-        const dvec2 a = tex(allEdges[i][0]), b = tex(allEdges[i][1]);
-        edgeDev[i] = edgeDeviation(hf, a, b, heightAt(hf, a), heightAt(hf, b));
+        const uint32_t ia = edgeVertices[i][0], ib = edgeVertices[i][1];
+        const dvec2 a = vertexTex[ia], b = vertexTex[ib];
+        edgeDev[i] = edgeDeviation(hf, a, b, vertexHeight[ia], vertexHeight[ib]);
       }
       for (size_t i = 0; i < allTriangles.size(); ++i) {
-        const dvec2 a = tex(allTriangles[i][0]), b = tex(allTriangles[i][1]), c = tex(allTriangles[i][2]);
-        triangleDev[i] = interiorDeviation(hf, a, b, c, heightAt(hf, a), heightAt(hf, b), heightAt(hf, c));
+        const uint32_t ia = triangleVertices[i][0], ib = triangleVertices[i][1], ic = triangleVertices[i][2];
+        triangleDev[i] = interiorDeviation(hf, vertexTex[ia], vertexTex[ib], vertexTex[ic], vertexHeight[ia], vertexHeight[ib],
+                                           vertexHeight[ic]);
       }
       for (int k = 0; k < kErrboundLevels; ++k) {
         double worst = 0;
