@@ -2,6 +2,7 @@
 // device's figures consistent with what `lodbench devices` prints.
 #include <gtest/gtest.h>
 
+#include "cli_run.h"
 #include "gpu_fixture.h"
 #include "vk/device_limits.h"
 
@@ -71,4 +72,14 @@ TEST(DeviceLimits, TheTestDeviceTakesTheCommittedCropAndStatesItsLargest) {
   std::printf("[device limits] %s: largest terrain %d^2 (maxImageDimension2D %u, heap %llu MiB, %s)\n", d.name.c_str(),
               side, d.maxImageDimension2D, (unsigned long long)(d.deviceHeapBytes >> 20),
               d.sharedHeap ? "one heap" : "separate heaps");
+}
+
+// `lodbench devices` states the same largest terrain as the library computes for the test device.
+TEST(DeviceLimits, DevicesCommandPrintsTheLargestTerrain) {
+  const DeviceLimits d = lb::deviceLimits(lbtest::gpu().physicalDevice);
+  const std::string side = std::to_string(lb::largestSquareTerrain(d));
+  const lb::test::CliOut o = lb::test::lodbench("devices", false);
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find(d.name), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("largest terrain: " + side + " x " + side + " samples"), std::string::npos) << o.text;
 }
