@@ -22,6 +22,7 @@
 #include <ogr_srs_api.h>
 
 #include "dem_crop.h"
+#include "input_error.h"
 #include "results/sha256.h"
 #include "sweep/results.h"
 #include "terrain/generators.h"
@@ -34,15 +35,7 @@ using lb::TerrainSpec;
 
 namespace {
 
-template <class F>
-std::string inputErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using lbtest::inputErrorOf;
 
 // A fresh directory per test.
 std::string testDir() {

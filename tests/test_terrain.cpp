@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dem_crop.h"
+#include "input_error.h"
 #include "error.h"
 #include "terrain/heightfield.h"
 
@@ -28,16 +29,7 @@ void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes
   ASSERT_TRUE(out.good()) << path;
 }
 
-// The message of the InputError thrown by f, or "" if f returns (other exceptions fail the test).
-template <class F>
-std::string inputErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using lbtest::inputErrorOf;
 
 uint64_t fnv1a(const std::vector<float>& v) {
   uint64_t hash = 1469598103934665603ull;

@@ -131,7 +131,8 @@ TEST(Calibration, SweepRecordsModesAndFlagsPlantedDrift) {
     "timing": ["shaded", "depth", "frontend"], "calibration": {"level": 4, "frames": 2, "max_tries": 4, "min_load_s": 0.2}
   })",
                          "timing.json", dir);
-  for (double drift : {0.0, 0.5}) {
+  // A planted drift of 10x: lavapipe's own run-to-run noise (up to 1.5x here) can never cancel it.
+  for (double drift : {0.0, 10.0}) {
     c.timing.testDrift = drift;
     fs::path out = fs::temp_directory_path() / ("lodbench_timing_" + std::to_string(int(drift * 10)));
     fs::remove_all(out);
