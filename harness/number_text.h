@@ -1,5 +1,5 @@
 #pragma once
-// Numbers in messages and listings (issue 14): the shortest text that reads back as the same
+// Numbers in messages and listings: the shortest text that reads back as the same
 // double, plain where that is readable (0.5, 1000000, 0.0001) and in exponent form only for very
 // large or small magnitudes, so "0 is outside [0.5, 64]" never reads "0.000000" and a range never
 // reads "1e+06".

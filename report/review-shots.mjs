@@ -1,4 +1,4 @@
-// Screenshots for reviewing a scenario sweep (issue 12): the summary page's first screen and, for
+// Screenshots for reviewing a scenario sweep: the summary page's first screen and, for
 // each RUN:CASE_ID:FRAME given, that run report's image strip of the case's frame.
 // Usage: node report/review-shots.mjs SWEEP_DIR OUT_DIR [RUN:CASE_ID:FRAME ...]
 import {chromium} from 'playwright-core';

@@ -96,7 +96,7 @@ class ErrBound : public Scheme {
     static const SchemeInfo kInfo = {
         "errbound",
         "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
-        "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation (design.md section 4)",
+        "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation (docs/design.md, Schemes)",
         {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
           "guaranteed maximum screen-space geometric error in pixels"}},
         Topology::Quad4,

@@ -1,4 +1,4 @@
-// Accuracy baseline (design sections 4 and 6): the densest crack-free tessellation the device
+// Accuracy baseline (docs/design.md, Schemes and What is measured): the densest crack-free tessellation the device
 // allows over the whole grid, integer level 64 (Vulkan's guaranteed maxTessellationGenerationLevel)
 // on every edge and inside, no culling. Ground truth for the image metrics. Shader: reference.tesc.
 #include "render/scheme.h"
@@ -12,7 +12,7 @@ class Reference : public Scheme {
     static const SchemeInfo kInfo = {
         "reference",
         "integer level 64 on every edge and inside, no culling (ground truth for image metrics)",
-        "accuracy baseline: design sections 4 and 6",
+        "accuracy baseline: docs/design.md, Schemes and What is measured",
         {},
         Topology::Quad4,
         Partitioning::Integer,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Attributes the frontend-mode gap at uniform level 1 (issue 13, limit.json: lodbench 0.023 ms,
+# Attributes the frontend-mode gap at uniform level 1 (limit.json: lodbench 0.023 ms,
 # minimal loop 0.022 ms). Three interleaved rounds of `probe --compare --modes frontend` with the
 # plain minimal loop and with its --vertex-height variant (control-point height fetch, as lodbench's
 # vertex shader), at grid 64 and grid 256 (16x the patches: a per-patch cost grows 16x, a per-frame

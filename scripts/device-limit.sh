@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes OUT_DIR/limit.json on a machine with an NVIDIA GPU (issue 13): lodbench's renderer and the
+# Writes OUT_DIR/limit.json on a machine with an NVIDIA GPU: lodbench's renderer and the
 # minimal tessellation loop (`lodbench probe --compare`) side by side in one session, for uniform
 # levels 1, 4, 8, 16, 64 at grid 64 and level 64 at grid 256, at 720p, 1080p and 4K, in every
 # timing mode; ratio = minimal_ms / lodbench_ms. About 4 minutes on an H100.

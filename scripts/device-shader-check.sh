@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13: the same GPU, the binary before and after the fragment-shader change, interleaved
+# The same GPU, the binary before and after the fragment-shader change, interleaved
 # (old, new, old, new) over configs/gpu-shader-check.json, plus 1080p renders of flyover frames
 # 0 and 80 for an image comparison on the host (scripts/png-diff.py).
 # Usage: scripts/device-shader-check.sh OLD_BUILD NEW_BUILD OUT_DIR

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares two 8-bit RGB(A) PNGs of one frame (issue 13's shader change): max and mean absolute
+"""Compares two 8-bit RGB(A) PNGs of one frame (before and after a shader change): max and mean absolute
 channel difference and PSNR over the pixels that are terrain in both (pixels equal to a background
 colour in either image are left out, since the background colour itself may differ).
 Usage: png-diff.py A.png B.png [--background R,G,B ...]   (default background: 255,0,255)"""

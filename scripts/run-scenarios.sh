@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the scenario library (configs/scenarios/*.json, issue 12) over every scheme, one run per
+# Runs the scenario library (configs/scenarios/*.json) over every scheme, one run per
 # scenario under OUT (default results/scenarios), then writes each run's report.
 # Usage: scripts/run-scenarios.sh [OUT] [--resolution WxH] [--only NAME[,NAME...]] [--no-images] [-- extra `run` args]
 # (--no-images keeps runs small enough to ship back from a GPU machine at 1920x1080.)
@@ -45,7 +45,7 @@ for cfg in configs/scenarios/*.json; do
   "$bin" report "$out/$name" >/dev/null || rc=1
   echo "run-scenarios: $name in $(($(date +%s) - t0)) s -> $out/$name/report/report.html"
 done
-# One page over every scenario run under OUT: the grid of scenarios x schemes (issue 12).
+# One page over every scenario run under OUT: the grid of scenarios x schemes.
 "$bin" report "$out" >/dev/null || rc=1
 echo "run-scenarios: summary -> $out/report/report.html"
 echo "run-scenarios: done in $(($(date +%s) - start)) s (exit $rc)"

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Accuracy baseline (design sections 4 and 6): the densest crack-free tessellation, integer level
+// Accuracy baseline (docs/design.md, Schemes and What is measured): the densest crack-free tessellation, integer level
 // min(64, maxTessellationGenerationLevel) on every edge and inside, no culling. Vulkan requires
 // maxTessellationGenerationLevel >= 64, so the level is LB_MAX_FACTOR on every conformant device.
 #include "common.glsl"

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Identical shading for every scheme: per-pixel normals from the terrain's normal map (one filtered
-// fetch, issue 13), one directional light.
+// fetch), one directional light.
 #include "common.glsl"
 
 layout(constant_id = 0) const int kMode = LB_MODE_SHADED;

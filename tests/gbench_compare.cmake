@@ -29,7 +29,7 @@ foreach(c ${cases})
   if(at LESS 0)
     message(FATAL_ERROR "compare.py output does not list ${id}")
   endif()
-  # Times are in microseconds (issue 14): compare.py prints whole units, so in "ms" a 0.78 ms frame
+  # Times are in microseconds: compare.py prints whole units, so in "ms" a 0.78 ms frame
   # read "1". The printed Time Old must be the file's real_time, with at least two digits.
   file(READ ${WORK}/a/gbench.json doc)
   string(JSON nb LENGTH "${doc}" benchmarks)

@@ -1,4 +1,4 @@
-// Bad-input table (issue 11): every row is one distinct bad input (config, camera path, terrain
+// Bad-input table: every row is one distinct bad input (config, camera path, terrain
 // file or command line) run through the lodbench binary. Each must exit 2 before any case runs,
 // with a message naming the file and line (or the flag) and the field, and must leave an existing
 // run directory exactly as it was.

@@ -34,7 +34,7 @@ TEST(Cli, ListShowsSchemesWithParameters) {
   EXPECT_EQ(o.code, 0);
   EXPECT_NE(o.text.find("sphere"), std::string::npos);
   EXPECT_NE(o.text.find("range [1, 64]"), std::string::npos) << o.text;
-  // Issue 14: columns sized from the content (long names broke them) and plain range numbers.
+  // Columns sized from the content (long names broke them) and plain range numbers.
   EXPECT_NE(o.text.find("range [0, 10000]"), std::string::npos) << "not 1e+04: " << o.text;
   EXPECT_EQ(o.text.find("e+"), std::string::npos) << o.text;
   size_t defaultCol = std::string::npos, rangeCol = std::string::npos, descCol = std::string::npos;
@@ -59,7 +59,7 @@ TEST(Cli, ListShowsSchemesWithParameters) {
   EXPECT_GE(triSize3, 3) << "sphere, sphere-edge, sphere-rings: tri_size default 3";
 }
 
-// Issue 14: numbers in errors are the shortest round-trip text (std::to_string gave "0.000100" and
+// Numbers in errors are the shortest round-trip text (std::to_string gave "0.000100" and
 // CLI11's ranges "0.000000 to 0.500000"); --dry-run says nothing of shards when none was asked.
 TEST(Cli, NumbersInErrorsAndDryRunWording) {
   std::string bad = ::testing::TempDir() + "/tiny_param.json";
@@ -118,7 +118,7 @@ TEST(Cli, BadFlagsAndInputsExitTwoWithAClearMessage) {
   EXPECT_NE(o.text.find("Usage"), std::string::npos) << o.text;
 }
 
-// Issue 11: with the validation layer missing, a run that asked for validation used to warn and
+// With the validation layer missing, a run that asked for validation used to warn and
 // go on without it, so "zero validation messages" held vacuously. Hide the layer from the loader.
 TEST(Cli, AskedForValidationFailsWithoutTheLayer) {
   const std::string empty = ::testing::TempDir() + "/no_layers";
@@ -152,7 +152,7 @@ TEST(Cli, AskedForValidationFailsWithoutTheLayer) {
   EXPECT_FALSE(std::filesystem::exists(runDir));
 }
 
-// Issue 9 item 4: render takes every terrain type a config can, r16 / r32f included.
+// Render takes every terrain type a config can, r16 / r32f included.
 TEST(Cli, RenderLoadsRawTerrains) {
   const std::string dir = ::testing::TempDir();
   std::ofstream(dir + "/t.r16", std::ios::binary) << std::string(2 * 17 * 9, '\x10');

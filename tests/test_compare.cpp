@@ -125,7 +125,7 @@ TEST(Compare, DifferentFrameSetIsAnExactDifference) {
   EXPECT_EQ(r.exitCode(), 1);
 }
 
-// Defect (issue 11): counters were skipped on another driver and the verdict said "clean". Now
+// Defect: counters were skipped on another driver and the verdict said "clean". Now
 // --require-exact makes it an error, and without the flag the verdict says loudly what it did not check.
 TEST(Compare, OtherDriverCountersAreAnErrorWithRequireExactAndLoudWithout) {
   json changed = caseDoc("x", gpuTimes(30, 1));
@@ -151,7 +151,7 @@ TEST(Compare, OtherDriverCountersAreAnErrorWithRequireExactAndLoudWithout) {
   EXPECT_EQ(verdictJson(r)["not_checked"].size(), r.notChecked.size());
 }
 
-// Defect (issue 11): a metric in the baseline and missing in the candidate was skipped, so a pass
+// Defect: a metric in the baseline and missing in the candidate was skipped, so a pass
 // that broke (or stopped running) passed the check.
 TEST(Compare, MetricMissingInTheCandidateIsARegression) {
   json a = caseDoc("x", gpuTimes(10, 1)), b = a;
@@ -200,7 +200,7 @@ TEST(Compare, TimingRegressionNeedsSignificanceAndThreshold) {
   EXPECT_EQ(r.exitCode(), 0);
 }
 
-// Defect (issue 11): frames were judged as independent samples. One round a side whose frames sit
+// Defect: frames were judged as independent samples. One round a side whose frames sit
 // tightly around different levels (a run that happened to be slower, x1.4) was flagged as a
 // regression (pooled-frame p ~ 1e-11). Now one round is no evidence: ratio reported, no verdict.
 // With rounds whose levels scatter as runs on a loaded machine do, a 1.2 vs 1.4 difference of
@@ -312,7 +312,7 @@ TEST(Compare, OneDisturbedRoundIsNotARegression) {
   EXPECT_EQ(r.exitCode(), 0);
 }
 
-// Issue 14: a significant 1.56x slowdown under CI's 2x threshold was called "unchanged". The verdict
+// A significant 1.56x slowdown under CI's 2x threshold was called "unchanged". The verdict
 // line now leads with the ratio and says it is within the threshold; JSON keeps the enum.
 TEST(Compare, SignificantSlowdownUnderTheThresholdIsSaidSo) {
   RunData base = rounds("w_base", {1.0, 1.01, 0.99});

@@ -22,7 +22,7 @@ static std::string errorOf(const std::string& text) {
   return "";
 }
 
-// The default job is the whole comparison (issue 14): every registered scheme but reference (level
+// The default job is the whole comparison: every registered scheme but reference (level
 // 64 everywhere, ~15 s a frame on lavapipe) with at least 3 values of one parameter, so each has a
 // front, over one path at lavapipe size.
 TEST(Config, QuickConfigRunsEverySchemeWithAFront) {
@@ -138,7 +138,7 @@ TEST(Config, MissingFile) {
   }
 }
 
-// Issue 11: last-wins duplicate keys hid typos; now the second occurrence is named.
+// Last-wins duplicate keys hid typos; now the second occurrence is named.
 TEST(Config, DuplicateKeysAreRejectedWithTheirLine) {
   std::string e = errorOf("{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [{\"name\": \"sphere\",\n"
                           "   \"params\": {\"tri_size\": 2,\n  \"tri_size\": 3}}]\n}");
@@ -149,7 +149,7 @@ TEST(Config, DuplicateKeysAreRejectedWithTheirLine) {
             "");
 }
 
-// Issue 11: a path CSV is parsed with the config, so a malformed one stops the run before any case.
+// A path CSV is parsed with the config, so a malformed one stops the run before any case.
 TEST(Config, CameraPathErrorsAreFoundAtConfigTime) {
   const std::string dir = ::testing::TempDir();
   std::ofstream(dir + "/broken.csv") << "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov\n0,0,0,0,1,0,1,60\n1,oops,0,0,1,0,1,60\n";
@@ -164,7 +164,7 @@ TEST(Config, CameraPathErrorsAreFoundAtConfigTime) {
   EXPECT_NE(errorOf("{\"paths\": [\"paths\"], \"schemes\": [\"sphere\"]}").find("is a directory"), std::string::npos);
 }
 
-// Issue 11: fields a terrain type does not read, and image frames past the path, were silently ignored.
+// Fields a terrain type does not read, and image frames past the path, were silently ignored.
 TEST(Config, IgnoredFieldsAndUnreachableFramesAreRejected) {
   const std::string p = "\"paths\": [\"paths/horizon.csv\"], \"schemes\": [\"sphere\"], ";
   EXPECT_NE(errorOf("{" + p + "\"terrain\": {\"type\": \"procedural\", \"width\": 3}}").find("'/terrain/width'"),
@@ -179,7 +179,7 @@ TEST(Config, IgnoredFieldsAndUnreachableFramesAreRejected) {
   EXPECT_NE(errorOf("{" + p + "\"images\": {\"frames\": [-100000]}}").find("'/images/frames/0'"), std::string::npos);
 }
 
-// Issue 11: interlock accepted dmin == dmax, which distance rejects; the range rule is now one for all.
+// Interlock accepted dmin == dmax, which distance rejects; the range rule is now one for all.
 TEST(Config, EmptyDistanceRangesAreRejectedForEveryScheme) {
   for (const char* scheme : {"distance", "interlock", "planefit"}) {
     std::string e = errorOf(std::string("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"") + scheme +

@@ -1,4 +1,4 @@
-// Crack metrics (design section 6): the analytic count from captured levels and the image count
+// Crack metrics (docs/design.md, What is measured): the analytic count from captured levels and the image count
 // against the `reference` scheme. A deliberately cracking test scheme must trip both; the registry
 // schemes (sphere-rings only with its power-of-2 clamp) must trip neither.
 #include <unistd.h>

@@ -89,7 +89,7 @@ TEST(ImageMetrics, CrackPixelsFindHolesNotSilhouettes) {
   EXPECT_EQ(crackPixels(ref, ref), 0);
 }
 
-// ---- Ground truth (issue 9 item 3): the tessellated `reference` scheme against the ray cast of
+// ---- Ground truth: the tessellated `reference` scheme against the ray cast of
 // the true heightfield (metrics/raycast.h), which image metrics now compare against.
 
 namespace {

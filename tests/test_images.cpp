@@ -1,4 +1,4 @@
-// Images for people (issue 14): sky background, images.resolution with the case's own
+// Images for people: sky background, images.resolution with the case's own
 // tessellation, worst frames always drawn, readable wireframes, and no effect on what is measured.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-// Issue 13: shaded frames take their normals from a per-terrain normal map (terrain/normal_map.h),
+// Shaded frames take their normals from a per-terrain normal map (terrain/normal_map.h),
 // one filtered fetch per pixel, instead of four bilinear height lookups per pixel. The map's texels
 // are the old central-difference gradients, so the filtered gradient is the old one up to rounding:
 // on the CPU (exactly stated below) and on the GPU against the old shader, kept as the test-only

@@ -1,4 +1,4 @@
-// Popping (design section 6): the current pose rendered with the previous pose's LOD camera
+// Popping (docs/design.md, What is measured): the current pose rendered with the previous pose's LOD camera
 // against live LOD. Only level changes may show up: a static camera and a camera-independent
 // scheme give exactly zero, a jump in LOD gives a visible difference.
 #include <cmath>
@@ -96,7 +96,7 @@ TEST_F(Popping, CullsWithTheLiveCameraAndRestoresTheSetting) {
 }
 
 // A case's first frame has no previous frame: popping is null there, not 0, and summaries average
-// only the frames that could pop (issue 9 item 5).
+// only the frames that could pop.
 TEST_F(Popping, FirstFrameIsNullAndSummariesSkipIt) {
   Renderer r(gpu(), testTerrain(), {kW, kH, kGrid});
   r.setScheme(*findScheme("sphere"), {});

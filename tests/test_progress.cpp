@@ -1,4 +1,4 @@
-// The sweep's remaining-time estimate (issue 14) on synthetic sequences of measured costs: per
+// The sweep's remaining-time estimate on synthetic sequences of measured costs: per
 // scheme where known, the mean over the schemes run so far otherwise, and measurement frames
 // counted at their own cost (they, not the timing frames, dominate a lavapipe sweep).
 #include <gtest/gtest.h>
@@ -28,7 +28,7 @@ TEST(EtaEstimator, NothingMeasuredIsIncompleteNotZero) {
   EXPECT_TRUE(complete);  // nothing left is exactly nothing
 }
 
-// Issue 14's sequence: uniform's timing frames took 19 s and its 13 measured frames 63 s. The old
+// The sequence: uniform's timing frames took 19 s and its 13 measured frames 63 s. The old
 // estimate (timing frames only) said ~84 s were left with three such cases to go; counting the
 // measured frames at their cost gives the real 3 x 82 s.
 TEST(EtaEstimator, MeasuredFramesAtTheirOwnCost) {

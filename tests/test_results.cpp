@@ -166,7 +166,7 @@ TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
     EXPECT_EQ(b["summary"]["measured_frames"], 2);
     EXPECT_TRUE(b["summary"].contains("err_mean_px"));
     EXPECT_EQ(b["summary"]["hist_total"].size(), 15u);
-    std::set<int> imaged = {1};  // the configured frame and the worst measured frames (issue 14)
+    std::set<int> imaged = {1};  // the configured frame and the worst measured frames
     for (auto& [metric, f] : b["summary"]["worst_frames"].items()) imaged.insert(f.get<int>());
     EXPECT_EQ(b["images"].size(), 2 * imaged.size());
     for (auto& img : b["images"]) EXPECT_TRUE(fs::exists(dOn / img.get<std::string>())) << img;
@@ -179,7 +179,7 @@ TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
   EXPECT_NE(header.find(",surplus,"), std::string::npos);
 }
 
-// Defect (issue 11): a device without geometry shaders cannot run the histogram pass, which
+// Defect: a device without geometry shaders cannot run the histogram pass, which
 // used to mark the whole case skipped and throw its valid timing frames away. Now the pass is null
 // with its reason in each measured frame record, and the case keeps its timings and stays ok.
 TEST(Results, OptionalPassTheDeviceCannotRunIsNullAndTheCaseStaysOk) {
@@ -217,7 +217,7 @@ TEST(Results, OptionalPassTheDeviceCannotRunIsNullAndTheCaseStaysOk) {
   }
 }
 
-// Defect (issue 11): five readers parsed the run directory with five error policies, and the
+// Defect: five readers parsed the run directory with five error policies, and the
 // aggregates silently dropped an unreadable case file. Now every reader goes through
 // results/run_dir.h: an unreadable case file is an error naming it, for report, compare, gbench,
 // merge and the aggregates alike.

@@ -1,4 +1,4 @@
-// Result identity and resume (issue 11): case ids never collide, duplicates are errors, resume
+// Result identity and resume: case ids never collide, duplicates are errors, resume
 // reuses a finished case only when its input digest is unchanged, --shard must match the
 // folder's, and a sweep killed with SIGKILL at random moments resumes to results equal, counter
 // for counter, to an uninterrupted run.
@@ -76,7 +76,7 @@ TEST(Sha256, MatchesTheFipsTestVectors) {
   EXPECT_EQ(sha256Hex(std::string(1000000, 'a')), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
-// Defect (issue 11): the terrain label ignored extent, so two terrains differing only in extent
+// Defect: the terrain label ignored extent, so two terrains differing only in extent
 // gave one case id, the second was "resumed" from the first and vanished while run.json said ok.
 TEST(CaseIdentity, TerrainsDifferingOnlyInExtentGetDistinctIdsAndBothRun) {
   Config c = config(R"("terrains": [{"type": "procedural", "size": 33, "seed": 5, "extent": 1000},
@@ -148,7 +148,7 @@ TEST(CaseIdentity, DuplicateEntriesAreErrorsNamingBoth) {
   EXPECT_NE(e.find("and #2"), std::string::npos) << e;
 }
 
-// Defect (issue 11): resume compared only the config JSON, so an edited path CSV left one run
+// Defect: resume compared only the config JSON, so an edited path CSV left one run
 // holding cases of two different paths.
 TEST(Resume, ChangedPathCsvIsRefusedUnlessRerunChanged) {
   fs::path d = fresh("changed_path");
@@ -176,7 +176,7 @@ TEST(Resume, ChangedPathCsvIsRefusedUnlessRerunChanged) {
   EXPECT_EQ(runSweep(config(body, d.string()), {run.string(), false, false}).resumed, 2);
 }
 
-// Defect (issue 11): resuming a shard folder with another --shard mixed shards.
+// Defect: resuming a shard folder with another --shard mixed shards.
 TEST(Resume, ShardMustMatchTheFolders) {
   fs::path d = fresh("shard");
   std::string body = R"("terrain": {"type": "procedural", "size": 33, "seed": 5}, "paths": ["paths/flyover.csv"],

@@ -1,4 +1,4 @@
-// Scale-free schemes (design section 6, issue 9): the same picture gives the same tessellation at
+// Scale-free schemes (docs/design.md, What is measured): the same picture gives the same tessellation at
 // any world scale. The procedural terrain with extent, heights and camera scaled by 0.01, 1 and 100
 // (paths are relative to the extent) must give every scheme the same triangle counts on every
 // frame; and on a real DEM at its own extent the distance-based schemes must neither collapse to

@@ -256,7 +256,7 @@ TEST(Terrain, Png16Roundtrip) {
   const int w = 5, h = 3;
   const std::vector<uint16_t> px = {0, 1, 2, 65535, 12345, 100, 200, 300, 400, 500, 32768, 7, 8, 9, 65534};
   TerrainSpec s = fileSpec("png16", "height16.png");
-  s.heightScale = 0.5f;  // stored value x height_scale, like r16 and hgt (issue 9: no division by 65535)
+  s.heightScale = 0.5f;  // stored value x height_scale, like r16 and hgt (no division by 65535)
   s.extent = 640.0f;
   writeBytes(s.file, png16Gray(w, h, px));
   const Heightfield hf = lb::makeHeightfield(s);
@@ -269,7 +269,7 @@ TEST(Terrain, Png16Roundtrip) {
   EXPECT_EQ(hf.minHeight, 0.0f);
 }
 
-// The four file types agree: the same stored samples give the same heights (issue 9, item 4).
+// The four file types agree: the same stored samples give the same heights.
 TEST(Terrain, EveryFileTypeMeansStoredValueTimesHeightScale) {
   const std::vector<uint16_t> px = {0, 1, 258, 8848, 4096, 77};
   TerrainSpec png = fileSpec("png16", "same.png"), r16 = fileSpec("r16", "same.r16"), r32 = fileSpec("r32f", "same.r32f");

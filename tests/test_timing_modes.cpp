@@ -1,4 +1,4 @@
-// Issue 13: the GPU profiler's timestamp mask, timing modes (depth, frontend) against shaded,
+// The GPU profiler's timestamp mask, timing modes (depth, frontend) against shaded,
 // the minimal loop (probe), and clock-control calibration with a planted drift.
 #include <filesystem>
 #include <fstream>

@@ -269,7 +269,7 @@ int main(int argc, char** argv) {
   report->add_option("--frames", rep.frames, "Frames for the image strips, e.g. 0,240 (default: all with images)")
       ->delimiter(',');
   report->add_flag("--no-html", noHtml, "Write Markdown and chart specs only (do not run report/render.mjs)");
-  // compare / ab / gbench (design section 8): regression checks and Google Benchmark JSON.
+  // compare / ab / gbench (docs/design.md, Reports and regression checks): regression checks and Google Benchmark JSON.
   auto* compare = app.add_subcommand("compare", "Check a candidate run against a baseline; exit 1 on a regression");
   std::string baselineDir;
   std::vector<std::string> candidateDirs;
@@ -301,7 +301,7 @@ int main(int argc, char** argv) {
   std::string gbenchDir;
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
 
-  // probe (issue 13): the minimal tessellation loop beside lodbench's renderer.
+  // probe: the minimal tessellation loop beside lodbench's renderer.
   auto* probe = app.add_subcommand("probe", "Time the minimal tessellation loop (uniform levels) at a config's grid, resolutions, modes and camera");
   ProbeCommandOptions po;
   probe->add_option("config", po.config, "Config file (grid, resolutions, timing modes, terrain, first path)")->required();

@@ -240,7 +240,7 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
   r.candidateContext = cand.context;
   r.options = o;
 
-  // Counters are deterministic per device and driver build only (design section 5).
+  // Counters are deterministic per device and driver build only (docs/design.md, Renderer).
   const char* const identity[] = {"device", "driver", "driver_info"};
   r.exactChecked = true;
   for (const char* key : identity) {

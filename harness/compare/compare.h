@@ -1,5 +1,5 @@
 #pragma once
-// lodbench compare (design section 8): a candidate run against a baseline, case by case.
+// lodbench compare (docs/design.md, Reports and regression checks): a candidate run against a baseline, case by case.
 //  - exact: per-frame pipeline-statistics counters and deterministic measurements must be equal
 //    (comparable only when both runs come from the same device and driver: otherwise the verdict
 //    says loudly that they were not checked, and with requireExact it is an error);

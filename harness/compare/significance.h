@@ -1,5 +1,5 @@
 #pragma once
-// Statistics for comparing two sets of per-frame timings (lodbench compare, design section 8).
+// Statistics for comparing two sets of per-frame timings (lodbench compare, docs/design.md, Reports and regression checks).
 #include <cstdint>
 #include <vector>
 

@@ -34,7 +34,7 @@ std::string limitText(const CompareOptions& o) { return num(1 + o.threshold, "%.
 }  // namespace
 
 std::string timingWords(const TimingCheck& t, const CompareOptions& o) {
-  // A significant 1.56x slowdown under CI's 2x threshold used to read "unchanged" (issue 14): say
+  // A significant 1.56x slowdown under CI's 2x threshold used to read "unchanged": say
   // what the test found, and that it stays within the threshold.
   const bool significant = t.p < o.alpha;
   switch (t.verdict) {

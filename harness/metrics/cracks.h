@@ -1,5 +1,5 @@
 #pragma once
-// Crack metrics (design section 6, "Cracks"): (a) analytic, from the tessellation levels the
+// Crack metrics (docs/design.md, What is measured): (a) analytic, from the tessellation levels the
 // control shader captured; (b) in the image, against the crack-free `reference` rendering.
 #include <cstdint>
 #include <string>

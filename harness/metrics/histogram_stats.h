@@ -1,5 +1,5 @@
 #pragma once
-// Statistics derived from a triangle-size histogram (design.md section 6): mean/median area,
+// Statistics derived from a triangle-size histogram (docs/design.md, What is measured): mean/median area,
 // the fraction under 1 px and the fraction within a factor 2 of a scheme's target area.
 #include <cmath>
 #include <cstdint>

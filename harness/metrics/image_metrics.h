@@ -1,5 +1,5 @@
 #pragma once
-// Image comparisons on RGBA8 frames (design section 6): PSNR, SSIM, differing pixels, cracks.
+// Image comparisons on RGBA8 frames (docs/design.md, What is measured): PSNR, SSIM, differing pixels, cracks.
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Popping (design section 6): the visual change between two frames caused only by the LOD update.
+// Popping (docs/design.md, What is measured): the visual change between two frames caused only by the LOD update.
 // The current pose is rendered twice, once with the LOD camera frozen at the previous pose (the
 // NVIDIA sample's "Eye only" mode: the centre of projection moves, the LOD does not) and once with
 // live LOD; camera motion is the same in both, so every difference comes from the levels changing.

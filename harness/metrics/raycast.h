@@ -1,5 +1,5 @@
 #pragma once
-// Ground truth for image metrics (issue 9, item 3): a CPU ray cast of the true heightfield, the
+// Ground truth for image metrics: a CPU ray cast of the true heightfield, the
 // bilinear surface that Heightfield::sample and shaders/common.glsl terrainHeight() define, shaded
 // as shaders/terrain.frag shades (raycast_shade.h). Each ray is intersected exactly with every
 // bilinear cell it crosses (a quadratic in the ray parameter), front to back, and a max-mipmap

@@ -1,5 +1,5 @@
 #pragma once
-// Surplus (design.md section 6): the scheme's triangles / the triangles `errbound` needs to reach
+// Surplus (docs/design.md, What is measured): the scheme's triangles / the triangles `errbound` needs to reach
 // the same measured error statistic (p95 of the error map, px) on the same frame. errbound's
 // max_error_px is bisected (in log scale over its range [0.1, 64]) with one error-map render per
 // step until errbound's p95 is within 2% of the scheme's (docs/results-format.md, "Surplus").

@@ -1,5 +1,5 @@
 #pragma once
-// A scheme's one-off GPU preprocessing (design section 3): a compute shader reads the heightfield
+// A scheme's one-off GPU preprocessing (docs/design.md, Schemes): a compute shader reads the heightfield
 // and writes an RGBA32F image that the tessellation stages sample afterwards.
 #include <string>
 #include <vector>

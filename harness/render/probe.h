@@ -1,5 +1,5 @@
 #pragma once
-// `lodbench probe`: the minimal tessellation loop (issue 13). One VS/TCS/TES(/FS) pipeline with a
+// `lodbench probe`: the minimal tessellation loop. One VS/TCS/TES(/FS) pipeline with a
 // constant-colour fragment shader, the base grid, one uniform level, one camera: nothing else
 // (no uniform buffer, no LOD decision, no shading). Timed with the renderer's GpuProfiler, so its
 // GPU time is the floor lodbench's own frame is compared against.

@@ -43,7 +43,7 @@ struct RenderSettings {
   // eighth of the patches again, after the statistics query ends and before the closing
   // timestamp, so GPU time grows while the counters stay exact (see record()).
   double testSlowdown = 0;
-  // Images for people (issue 14): the resolution the LOD decisions, error pixels and histogram
+  // Images for people: the resolution the LOD decisions, error pixels and histogram
   // areas assume (0 = width x height). A case's images render its frames at more pixels with the
   // case's own tessellation: lodWidth x lodHeight = the case's resolution (same aspect ratio).
   int lodWidth = 0, lodHeight = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// The scheme interface (design section 3): everything that differs between LOD methods.
+// The scheme interface (docs/design.md, Schemes): everything that differs between LOD methods.
 // Terrain, camera, shading and instrumentation belong to the renderer and are shared.
 #include <map>
 #include <memory>

@@ -28,7 +28,7 @@ std::vector<std::string> histogramBinLabels();
 // GPU ms and triangles vs mean and p95 screen-space error, with each scheme's Pareto front and
 // errbound's max_error_px sweep as the dashed reference front.
 std::vector<Chart> speedCharts(const ReportRun& run);
-// Scale study (issue 13): GPU ms (median, p95) and triangles against grid, resolution and each
+// Scale study: GPU ms (median, p95) and triangles against grid, resolution and each
 // scheme's swept parameter; only the charts whose variable the run varies.
 std::vector<Chart> scaleCharts(const ReportRun& run);
 // Triangle-size histograms (share of on-screen triangles per area bin), per scheme and path.

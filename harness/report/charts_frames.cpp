@@ -1,4 +1,4 @@
-// Charts over frames (design section 8): triangle-size histograms from the summaries' summed
+// Charts over frames (docs/design.md, Reports and regression checks): triangle-size histograms from the summaries' summed
 // bins, and per-frame timelines along each camera path from the case files.
 #include <cmath>
 

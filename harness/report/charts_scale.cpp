@@ -1,4 +1,4 @@
-// Scale-study charts (issue 13): how GPU time (median and p95) and triangles grow with the patch
+// Scale-study charts: how GPU time (median and p95) and triangles grow with the patch
 // grid, the resolution and each scheme's swept parameter (errbound: max_error_px). A chart is made
 // only when the run varies its variable with everything else held: cases that differ in that
 // variable alone form one line; cases whose line would be a single point are left out.

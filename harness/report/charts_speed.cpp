@@ -1,4 +1,4 @@
-// Speed-vs-accuracy charts (design section 8): cost (GPU ms, triangles) against screen-space
+// Speed-vs-accuracy charts (docs/design.md, Reports and regression checks): cost (GPU ms, triangles) against screen-space
 // error, one point per case, each scheme's Pareto front per path as a line, and errbound's sweep
 // over max_error_px as the dashed reference front. One panel per path and error kind, each with
 // its own padded, round axis domain (charts_axes.cpp), so a paper can print any panel.

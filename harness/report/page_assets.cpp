@@ -5,7 +5,7 @@ namespace lb {
 namespace {
 
 // Tables scroll inside their own box with the first column pinned, so the page itself never gets
-// wider than the window (issue 14: the every-case table was 1510 px at 1400).
+// wider than the window (the every-case table was 1510 px at 1400).
 const char* const kStyle = R"(<style>
 .table-wrap { max-width: 100%; overflow-x: auto; margin: 8px 0; }
 .table-wrap table { margin: 0; }

@@ -1,5 +1,5 @@
 #pragma once
-// The report's opening answer (issue 14): which scheme is fastest at a given accuracy and which is
+// The report's opening answer: which scheme is fastest at a given accuracy and which is
 // most accurate at a given cost, in sentences generated from the run's figures, with the threshold
 // each uses (chosen from the data and stated) and the caveat of the device the times come from.
 #include <string>

@@ -80,7 +80,7 @@ void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts)
   }
 }
 
-// Scenario runs (configs/scenarios/, issue 12): what failure to look for, a grid of how badly each
+// Scenario runs (configs/scenarios/): what failure to look for, a grid of how badly each
 // scheme shows it, and each case's figure for it with its worst frame.
 void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref) {
   const std::string d = scenarioDescription(run);
@@ -107,7 +107,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   Writer w;
   w.raw("# lodbench report: " + run.name + "\n\n",
         pageAssetsHtml() + "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
-  // The answer first (issue 14): what the run says, with its thresholds and caveat, then the evidence.
+  // The answer first: what the run says, with its thresholds and caveat, then the evidence.
   const std::vector<std::string> answer = openingAnswer(run);
   for (size_t i = 0; i < answer.size(); ++i)
     w.para(answer[i], i + 1 < answer.size() || answer.size() == 1 ? "answer" : "caveat");
@@ -142,7 +142,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   else
     w.table(problems, "problems");
 
-  // Clock control (issue 13): cases whose calibration workload drifted over the timed frames.
+  // Clock control: cases whose calibration workload drifted over the timed frames.
   std::string flagged;
   int calibrated = 0;
   for (const ReportCase& c : run.cases) {

@@ -32,10 +32,10 @@ constexpr Column kCaseColumns[] = {
     {"frames", "frames", ""},
     {"GPU ms median", "gpu_ms", "median"},
     {"GPU ms p95", "gpu_ms", "p95"},
-    {"GPU ms depth", "gpu_ms_depth", "median", true},        // timing modes (issue 13)
+    {"GPU ms depth", "gpu_ms_depth", "median", true},        // timing modes
     {"GPU ms frontend", "gpu_ms_frontend", "median", true},  // LOD decision + tessellator only
     {"CPU ms median", "cpu_ms", "median"},
-    {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs before issue 13 lack it
+    {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs recorded before timing modes lack it
     {"calibration drift", "calibration", "drift", true},  // flagged when |drift| > 0.02
     {"FPS median", "fps_median", ""},
     {"triangles median", "triangles", "median"},

@@ -1,5 +1,5 @@
 #pragma once
-// The summary of a scenario sweep (issue 12): `lodbench report OUT` on the folder that
+// The summary of a scenario sweep: `lodbench report OUT` on the folder that
 // scripts/run-scenarios.sh fills (one run per configs/scenarios/<name>.json) writes one page with
 // the grid of scenarios x schemes, coloured by how badly each scheme fails each scenario, each
 // cell linking to the case's row in that scenario's own report.

@@ -1,5 +1,5 @@
 #pragma once
-// The stability section of a scenario run (configs/scenarios/*.json, issue 12): the scenario's
+// The stability section of a scenario run (configs/scenarios/*.json): the scenario's
 // description (the failure it provokes, the seed that predicts it, the metric that shows it), a
 // summary grid of scenarios x schemes coloured by how badly each fails, and one row per case with
 // that metric, its worst frame and a link to the frame's images.

@@ -46,7 +46,7 @@ json measurementInputs(const Config& c) {
             {"repetitions", c.repetitions},
             {"measure", {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}}},
             {"images", {{"frames", c.images.frames}, {"modes", c.images.modes}}}};
-  // Added with issue 14: only when not the default, so digests of earlier runs stay valid.
+  // Added later than the other fields: only when not the default, so digests of earlier runs stay valid.
   const ImageRequest defaults;
   if (c.images.width != defaults.width || c.images.height != defaults.height) j["images"]["resolution"] = {c.images.width, c.images.height};
   if (c.images.worst != defaults.worst) j["images"]["worst"] = false;

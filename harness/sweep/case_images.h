@@ -1,5 +1,5 @@
 #pragma once
-// The images of a case that people look at (issue 14): the configured frames and the case's worst
+// The images of a case that people look at: the configured frames and the case's worst
 // measured frames (summary worst_frames), in every configured mode, at images.resolution with a
 // neutral sky behind the terrain. A second renderer draws them after every timed and measured
 // frame, so they cannot perturb the timings; it decides the LOD for the case's own resolution

@@ -356,7 +356,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
       }
     }
   }
-  // Timing modes and clock-control calibration (issue 13; see sweep/timing_spec.h).
+  // Timing modes and clock-control calibration (see sweep/timing_spec.h).
   if (j.contains("timing")) {
     const json& t = j["timing"];
     if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");

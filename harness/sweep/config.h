@@ -22,7 +22,7 @@ struct SchemeEntry {
 struct ImageRequest {
   std::vector<int> frames;          // path frame indices (negative counts from the end)
   std::vector<std::string> modes;   // shaded | heatmap | wireframe | error | cracks
-  // Size of the images (issue 14): a case's frames are drawn at this size with the case's own
+  // Size of the images: a case's frames are drawn at this size with the case's own
   // tessellation (sweep/case_images.h); a case of another aspect ratio gets the smallest size of
   // its aspect ratio that covers it.
   int width = 640, height = 360;

@@ -24,7 +24,7 @@ using nlohmann::json;
 namespace {
 
 // Times are written in microseconds: compare.py prints them as whole numbers of the file's unit, so
-// a 0.78 ms frame in "ms" read "1" (issue 14).
+// a 0.78 ms frame in "ms" read "1".
 constexpr double kUsPerMs = 1000.0;
 
 std::string readLine(const std::string& file) {

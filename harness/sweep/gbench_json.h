@@ -1,5 +1,5 @@
 #pragma once
-// A finished run in Google Benchmark's JSON schema (design section 7), so that its tools read
+// A finished run in Google Benchmark's JSON schema (docs/design.md, Output), so that its tools read
 // lodbench results: /usr/share/benchmark/compare.py benchmarks <run-a>/gbench.json <run-b>/gbench.json.
 // One benchmark per case (name = case_id): real_time = median GPU time, cpu_time = median CPU time,
 // both in microseconds (time_unit "us": compare.py prints whole units, and frames last under 1 ms),

@@ -1,5 +1,5 @@
 #pragma once
-// Measurement passes of one frame (design section 6), run after a case's timing frames so they
+// Measurement passes of one frame (docs/design.md, What is measured), run after a case's timing frames so they
 // never perturb the timings: histogram, screen-space error, image error against the ray-cast
 // ground truth, cracks, popping, surplus.
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// Progress lines and the remaining-time estimate of a sweep (issue 14). The estimate comes from
+// Progress lines and the remaining-time estimate of a sweep. The estimate comes from
 // measured costs: seconds per timing frame, per measured frame and per case (set-up, images), per
 // scheme once that scheme has run a case, else the mean over every case run so far; and seconds
 // per ground-truth ray cast, which only the first case of a terrain, path and resolution pays (the

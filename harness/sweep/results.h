@@ -1,5 +1,5 @@
 #pragma once
-// Result files (design section 7): run.json, cases/<id>.json, frames.csv, summary.json.
+// Result files (docs/design.md, Output): run.json, cases/<id>.json, frames.csv, summary.json.
 // Every write is atomic (temp file + rename), so a killed run leaves no corrupt file.
 #include <map>
 #include <string>
@@ -28,7 +28,7 @@ struct CaseResult {
   nlohmann::json matched;             // matched-comparison search result (null when off)
   std::vector<std::string> images;  // relative to the run dir
   double seconds = 0;
-  // Timing modes other than shaded (issue 13): mode -> frames in the order of `frames`.
+  // Timing modes other than shaded: mode -> frames in the order of `frames`.
   std::map<std::string, std::vector<FrameResult>> modeFrames;
   nlohmann::json calibration;  // clock-control calibration (null when off)
   TerrainSource terrainSource;  // what the case's terrain was read from (driver "": generated or never read)

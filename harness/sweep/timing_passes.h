@@ -1,5 +1,5 @@
 #pragma once
-// The timing side of a case beyond the shaded frames (issue 13): replays of the path in the
+// The timing side of a case beyond the shaded frames: replays of the path in the
 // depth and frontend timing modes, checked against the shaded frames' counters, and the
 // clock-control calibration run before and after the timed frames.
 #include <functional>

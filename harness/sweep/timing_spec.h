@@ -1,5 +1,5 @@
 #pragma once
-// Config of the timing side of a case (issue 13): which timing modes replay the path, and the
+// Config of the timing side of a case: which timing modes replay the path, and the
 // clock-control calibration run before and after the timed frames.
 #include <string>
 #include <vector>

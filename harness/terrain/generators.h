@@ -1,5 +1,5 @@
 #pragma once
-// Hostile procedural terrains for the scenario library (issue 12, "hostile terrain"): seeded and
+// Hostile procedural terrains for the scenario library ("hostile terrain"): seeded and
 // deterministic like makeProcedural (same spec -> same bits). Each provokes a failure the seeds
 // predict: one-texel spikes that screen-space and distance rules cannot see, a cliff that a
 // plane fit or a density map must catch within one texel, and a flat plane on which every

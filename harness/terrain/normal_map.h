@@ -1,5 +1,5 @@
 #pragma once
-// Per-terrain normal map (issue 13): computed once on the CPU at terrain load, uploaded by the
+// Per-terrain normal map: computed once on the CPU at terrain load, uploaded by the
 // renderer (LB_BINDING_NORMAL) and fetched once per pixel with a linear sampler in
 // shaders/terrain.frag; the ray-cast ground truth (metrics/raycast_shade.h) samples the same texels
 // with the same bilinear weights, so the reference shades exactly as the renderer does.

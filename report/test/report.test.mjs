@@ -1,4 +1,4 @@
-// Browser test of report.html (issue 14, "What it must show"): `lodbench report`, then Debian's
+// Browser test of report.html: `lodbench report`, then Debian's
 // chromium (through playwright-core, never a downloaded browser) opens the page from file://
 // offline and checks: no console errors or warnings, every chart drawn (vega views rendered =
 // charts in the manifest), every image loaded (naturalWidth > 0), every worst frame the report
