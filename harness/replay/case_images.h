@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "camera/camera_path.h"
-#include "sweep/config.h"
-#include "sweep/measure.h"
+#include "config/config.h"
+#include "replay/measure.h"
 
 namespace lb {
 
