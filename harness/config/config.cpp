@@ -1,4 +1,4 @@
-#include "sweep/config.h"
+#include "config/config.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,412 +8,38 @@
 #include <set>
 #include <sstream>
 
-#include "camera/camera_path.h"
+#include "config/case_identity.h"
+#include "config/config_sections.h"
+#include "config/json_lines.h"
+#include "config/json_strict.h"
 #include "error.h"
-#include "number_text.h"
-#include "results/case_identity.h"
-#include "terrain/terrain_cache.h"
-#include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
-#include "schemes/registry.h"
-#include "sweep/json_lines.h"
-#include "sweep/json_strict.h"
 
 namespace lb {
-namespace {
 
 using nlohmann::json;
 
-struct Reader {
-  std::string file;
-  std::map<std::string, int> lines;
-
-  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
-    auto it = lines.find(ptr);
-    std::string where = file + (it != lines.end() ? ":" + std::to_string(it->second) : "");
-    throw InputError(where + ": field '" + (ptr.empty() ? "/" : ptr) + "': " + msg);
-  }
-  void onlyKeys(const json& obj, const std::string& ptr, const std::set<std::string>& allowed) const {
-    if (!obj.is_object()) fail(ptr, "expected an object");
-    for (auto& [k, v] : obj.items())
-      if (!allowed.count(k)) {
-        std::string list;
-        for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(ptr + "/" + printable(k), "unknown key (allowed: " + list + ")");
-      }
-  }
-  double number(const json& v, const std::string& ptr, double lo, double hi) const {
-    if (!v.is_number()) fail(ptr, "expected a number, got " + printable(v.dump()));
-    double d = v.get<double>();
-    if (!std::isfinite(d) || d < lo || d > hi) {
-      fail(ptr, numberText(d) + " is outside [" + numberText(lo) + ", " + numberText(hi) + "]");
-    }
-    return d;
-  }
-  int integer(const json& v, const std::string& ptr, int lo, int hi) const {
-    double d = number(v, ptr, lo, hi);
-    if (d != std::floor(d)) fail(ptr, "expected an integer, got " + v.dump());
-    return int(d);
-  }
-  std::string string(const json& v, const std::string& ptr) const {
-    if (!v.is_string()) fail(ptr, "expected a string, got " + printable(v.dump()));
-    return v.get<std::string>();
-  }
-};
-
-std::string resolvePath(const std::string& base, const std::string& p) {
-  if (p.empty() || p[0] == '/' || base.empty()) return p;
-  return base + "/" + p;
-}
-
-// A file a config names: it must exist and be a regular file (a directory opens, then reads as empty).
-std::string inputFile(const Reader& r, const json& v, const std::string& ptr, const std::string& base, const char* what) {
-  std::string path = resolvePath(base, r.string(v, ptr));
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);
-  if (!std::ifstream(path)) r.fail(ptr, "cannot open " + std::string(what) + " '" + printable(path, 200) + "'");
-  return path;
-}
-
-std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
-                      "window", "overview", "detail"});
-  TerrainSpec spec;
-  if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",  "r32f",
-                                               "gdal",       "spikes", "cliff", "flat", "voids"};
-  if (!kTypes.count(spec.type))
-    r.fail(ptr + "/type", "'" + printable(spec.type) +
-                              "' is not one of procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids");
-  const bool gdal = spec.type == "gdal";
-  if (gdal && !haveGdal())
-    r.fail(ptr + "/type", "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
-                          "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
-  // A field the type does not read would be silently ignored: reject it instead.
-  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural" || isGeneratedTerrain(spec.type);
-  auto reason = [](const std::string& k) {
-    if (k == "file") return "generated terrains are not read from a file";
-    if (k == "size" || k == "seed") return "only generated terrains take a size and seed";
-    if (k == "band" || k == "window" || k == "overview") return "only gdal rasters take a band, window and overview";
-    return "only r16 and r32f take a width and height; other files carry their size";
-  };
-  for (const std::string k : {"file", "size", "seed", "width", "height", "band", "window", "overview"}) {
-    const bool used = k == "file"                    ? !procedural
-                      : (k == "size" || k == "seed") ? procedural
-                      : (k == "width" || k == "height") ? raw
-                                                        : gdal;
-    if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
-  }
-  if (!procedural) {
-    if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
-    spec.file = inputFile(r, t["file"], ptr + "/file", base, "heightmap file");
-    spec.heightScale = 1.0f;
-  }
-  if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
-  if (gdal) spec.extent = 0.0f;  // from the file's georeferencing unless "extent" is given
-  if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
-  if (t.contains("detail")) {  // procedural only: "fixed" (8 octaves, the default) or "resolution"
-    if (spec.type != "procedural") r.fail(ptr + "/detail", "only procedural terrains take a 'detail'");
-    const std::string d = r.string(t["detail"], ptr + "/detail");
-    if (d != "fixed" && d != "resolution") r.fail(ptr + "/detail", "'" + printable(d) + "' is not one of fixed, resolution");
-    spec.detailToSpacing = d == "resolution";
-  }
-  if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
-  // Procedural heights span [0, height_scale], so its bound is the height bound (kMaxAbsHeight);
-  // for files the product with the stored values is checked when the file is read below.
-  if (t.contains("height_scale"))
-    spec.heightScale = float(r.number(t["height_scale"], ptr + "/height_scale", 0, procedural ? kMaxAbsHeight : 1e9));
-  if (t.contains("width")) spec.rawWidth = r.integer(t["width"], ptr + "/width", 2, 65536);
-  if (t.contains("height")) spec.rawHeight = r.integer(t["height"], ptr + "/height", 2, 65536);
-  if (t.contains("origin")) {  // [x, z]: world position of the terrain's corner (scenario "far from the origin")
-    if (!t["origin"].is_array() || t["origin"].size() != 2) r.fail(ptr + "/origin", "expected [x, z]");
-    spec.originX = r.number(t["origin"][0], ptr + "/origin/0", -1e8, 1e8);
-    spec.originZ = r.number(t["origin"][1], ptr + "/origin/1", -1e8, 1e8);
-  }
-  if (raw && (spec.rawWidth == 0 || spec.rawHeight == 0)) r.fail(ptr, "raw terrain needs 'width' and 'height'");
-  if (t.contains("band")) spec.band = r.integer(t["band"], ptr + "/band", 1, 65535);
-  if (t.contains("overview")) spec.overview = r.integer(t["overview"], ptr + "/overview", 1, 30);
-  if (t.contains("window")) {  // [x, y, w, h] in the raster's pixels; checked against its size when read
-    const json& w = t["window"];
-    if (!w.is_array() || w.size() != 4) r.fail(ptr + "/window", "expected [x, y, width, height] in pixels");
-    for (size_t i = 0; i < 4; ++i)
-      spec.window.push_back(r.integer(w[i], ptr + "/window/" + std::to_string(i), i < 2 ? 0 : 2, 2147483647));
-  }
-  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
-  if (!procedural) {
-    try {
-      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
-    } catch (const InputError& e) {
-      r.fail(ptr + "/file", e.what());
-    }
-  }
-  std::vector<TerrainSpec> out;
-  if (t.contains("seed") && t["seed"].is_array()) {
-    for (size_t i = 0; i < t["seed"].size(); ++i) {
-      spec.seed = uint32_t(r.integer(t["seed"][i], ptr + "/seed/" + std::to_string(i), 0, 2147483647));
-      out.push_back(spec);
-    }
-    if (out.empty()) r.fail(ptr + "/seed", "empty list");
-  } else {
-    if (t.contains("seed")) spec.seed = uint32_t(r.integer(t["seed"], ptr + "/seed", 0, 2147483647));
-    out.push_back(spec);
-  }
-  return out;
-}
-
-// Parameters named <x>min / <x>max bound a range whose width divides (distance falloff): an empty
-// range is rejected for every scheme alike, so one scheme cannot accept what another refuses.
-void requireRanges(const Reader& r, const SchemeInfo& info, const ParamValues& pv, const std::string& ptr) {
-  for (auto& p : info.params) {
-    const size_t n = p.name.size();
-    if (n < 4 || p.name.compare(n - 3, 3, "min") != 0) continue;
-    const std::string hi = p.name.substr(0, n - 3) + "max";
-    auto lo = pv.find(p.name), up = pv.find(hi);
-    if (lo == pv.end() || up == pv.end()) continue;
-    if (!(lo->second < up->second)) {
-      r.fail(ptr, info.name + ": " + p.name + " (" + numberText(lo->second) + ") must be less than " + hi + " (" +
-                      numberText(up->second) + ")");
-    }
-  }
-}
-
-SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) {
-  SchemeEntry e;
-  json params = json::object();
-  if (s.is_string()) {
-    e.name = s.get<std::string>();
-  } else {
-    r.onlyKeys(s, ptr, {"name", "params"});
-    if (!s.contains("name")) r.fail(ptr, "missing 'name'");
-    e.name = r.string(s["name"], ptr + "/name");
-    if (s.contains("params")) params = s["params"];
-  }
-  const Scheme* scheme = findScheme(e.name);
-  if (!scheme)
-    r.fail(ptr + (s.is_string() ? "" : "/name"), "unknown scheme '" + printable(e.name) + "' (known: " + schemeNames() + ")");
-  if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
-  // Cartesian product of the listed values of each parameter.
-  e.variants = {ParamValues{}};
-  for (auto& [k, v] : params.items()) {
-    std::string pp = ptr + "/params/" + k;
-    std::vector<double> values;
-    if (v.is_array()) {
-      for (size_t i = 0; i < v.size(); ++i) values.push_back(r.number(v[i], pp + "/" + std::to_string(i), -1e30, 1e30));
-      if (values.empty()) r.fail(pp, "empty list");
-    } else {
-      values.push_back(r.number(v, pp, -1e30, 1e30));
-    }
-    std::vector<ParamValues> next;
-    for (auto& base : e.variants)
-      for (double d : values) {
-        ParamValues pv = base;
-        pv[k] = d;
-        try {
-          resolveParams(scheme->info(), {{k, d}});
-        } catch (const InputError& err) {
-          r.fail(pp, err.what());
-        }
-        next.push_back(pv);
-      }
-    e.variants = next;
-  }
-  // Cross-parameter checks (e.g. dmin < dmax) need every parameter of a variant.
-  for (auto& pv : e.variants) {
-    ParamValues full;
-    try {
-      full = resolveParams(scheme->info(), pv);
-      scheme->validate(full);
-    } catch (const InputError& err) {
-      r.fail(ptr + "/params", err.what());
-    }
-    requireRanges(r, scheme->info(), full, ptr + "/params");
-  }
-  return e;
-}
-
-}  // namespace
-
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
   json j = parseJsonStrict(text, file);
-  Reader r{file, jsonLineMap(text)};
+  ConfigReader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "grids", "fps", "warmup_frames", "max_frames",
                      "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
                      "description", "timing", "calibration"});
   Config c;
   c.file = file;
   c.raw = j;
-  if (j.contains("name")) c.name = r.string(j["name"], "/name");
-  if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos)
-    r.fail("/name", "must be a non-empty name without '/', '\\' or spaces");
-  if (j.contains("device")) c.device = r.string(j["device"], "/device");
-  for (const char* key : {"resolution", "resolutions"}) {
-    if (!j.contains(key)) continue;
-    const json& v = j[key];
-    std::string ptr = std::string("/") + key;
-    auto pair = [&](const json& p, const std::string& pp) {
-      if (!p.is_array() || p.size() != 2) r.fail(pp, "expected [width, height]");
-      int w = r.integer(p[0], pp + "/0", 16, 8192);
-      int h = r.integer(p[1], pp + "/1", 16, 8192);
-      return std::make_pair(w, h);
-    };
-    c.resolutions.clear();
-    if (v.is_array() && !v.empty() && v[0].is_array()) {
-      for (size_t i = 0; i < v.size(); ++i) c.resolutions.push_back(pair(v[i], ptr + "/" + std::to_string(i)));
-    } else {
-      c.resolutions.push_back(pair(v, ptr));
-    }
-  }
-  if (j.contains("grid") && j.contains("grids")) r.fail("/grids", "give either grid or grids, not both");
-  if (j.contains("grid")) c.grid = r.integer(j["grid"], "/grid", 1, 1024);
-  c.grids = {c.grid};
-  if (j.contains("grids")) {
-    const json& g = j["grids"];
-    if (!g.is_array() || g.empty()) r.fail("/grids", "expected a non-empty list of patch counts per side");
-    c.grids.clear();
-    for (size_t i = 0; i < g.size(); ++i) {
-      std::string at = "/grids/" + std::to_string(i);
-      c.grids.push_back(r.integer(g[i], at, 1, 1024));
-      if (std::count(c.grids.begin(), c.grids.end(), c.grids.back()) > 1) r.fail(at, "grid listed twice; remove one");
-    }
-    c.grid = c.grids.front();
-  }
-  if (j.contains("fps")) c.fps = r.number(j["fps"], "/fps", 1, 1000);
-  if (j.contains("warmup_frames")) c.warmupFrames = r.integer(j["warmup_frames"], "/warmup_frames", 0, 100000);
-  if (j.contains("max_frames")) c.maxFrames = r.integer(j["max_frames"], "/max_frames", 0, 10000000);
-  if (j.contains("case_timeout_s")) c.caseTimeoutS = r.number(j["case_timeout_s"], "/case_timeout_s", 0, 1e7);
-  if (j.contains("repetitions")) c.repetitions = r.integer(j["repetitions"], "/repetitions", 1, 1000);
-  if (j.contains("terrain")) {
-    auto t = parseTerrain(r, j["terrain"], "/terrain", baseDir);
-    c.terrains.insert(c.terrains.end(), t.begin(), t.end());
-  }
-  if (j.contains("terrains")) {
-    if (!j["terrains"].is_array()) r.fail("/terrains", "expected an array");
-    for (size_t i = 0; i < j["terrains"].size(); ++i) {
-      auto t = parseTerrain(r, j["terrains"][i], "/terrains/" + std::to_string(i), baseDir);
-      c.terrains.insert(c.terrains.end(), t.begin(), t.end());
-    }
-  }
-  if (c.terrains.empty()) c.terrains.push_back(TerrainSpec{});
-  std::vector<int> pathFrames;  // frames each path gives at this fps and max_frames
-  auto addPath = [&](const json& p, const std::string& ptr) {
-    std::string path = inputFile(r, p, ptr, baseDir, "camera path");
-    // Parse it now: a malformed CSV stops the run before any case (with the CSV's own line).
-    try {
-      int frames = frameCount(loadCameraPath(path), c.fps);
-      pathFrames.push_back(c.maxFrames > 0 ? std::min(frames, c.maxFrames) : frames);
-    } catch (const InputError& e) {
-      r.fail(ptr, e.what());
-    }
-    c.paths.push_back(path);
-  };
-  if (j.contains("path")) addPath(j["path"], "/path");
-  if (j.contains("paths")) {
-    if (!j["paths"].is_array()) r.fail("/paths", "expected an array of CSV files");
-    for (size_t i = 0; i < j["paths"].size(); ++i) addPath(j["paths"][i], "/paths/" + std::to_string(i));
-  }
-  if (c.paths.empty()) r.fail("", "no camera path: set 'paths' to a list of CSV files");
-  if (!j.contains("schemes") || !j["schemes"].is_array() || j["schemes"].empty())
-    r.fail("/schemes", "expected a non-empty array of schemes (known: " + schemeNames() + ")");
-  for (size_t i = 0; i < j["schemes"].size(); ++i)
-    c.schemes.push_back(parseScheme(r, j["schemes"][i], "/schemes/" + std::to_string(i)));
-  if (j.contains("images")) {
-    const json& im = j["images"];
-    r.onlyKeys(im, "/images", {"frames", "modes", "resolution", "worst"});
-    if (im.contains("resolution")) {
-      const json& v = im["resolution"];
-      if (!v.is_array() || v.size() != 2) r.fail("/images/resolution", "expected [width, height]");
-      c.images.width = r.integer(v[0], "/images/resolution/0", 16, 8192);
-      c.images.height = r.integer(v[1], "/images/resolution/1", 16, 8192);
-    }
-    if (im.contains("worst")) {
-      if (!im["worst"].is_boolean()) r.fail("/images/worst", "expected true or false");
-      c.images.worst = im["worst"].get<bool>();
-    }
-    if (im.contains("frames")) {
-      if (!im["frames"].is_array()) r.fail("/images/frames", "expected an array of frame indices");
-      for (size_t i = 0; i < im["frames"].size(); ++i) {
-        const std::string ptr = "/images/frames/" + std::to_string(i);
-        int f = r.integer(im["frames"][i], ptr, -1000000, 1000000);
-        // A frame past a path's end would be silently left out of that path's cases.
-        for (size_t k = 0; k < pathFrames.size(); ++k)
-          if (f >= pathFrames[k] || f < -pathFrames[k])
-            r.fail(ptr, std::to_string(f) + " is outside the " + std::to_string(pathFrames[k]) + " frames of '" +
-                            c.paths[k] + "' (valid: 0.." + std::to_string(pathFrames[k] - 1) + ", or -1..-" +
-                            std::to_string(pathFrames[k]) + " from the end)");
-        c.images.frames.push_back(f);
-      }
-    }
-    c.images.modes = {"shaded"};
-    if (im.contains("modes")) {
-      c.images.modes.clear();
-      if (!im["modes"].is_array()) r.fail("/images/modes", "expected an array of image modes");
-      for (size_t i = 0; i < im["modes"].size(); ++i) {
-        std::string m = r.string(im["modes"][i], "/images/modes/" + std::to_string(i));
-        if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
-          r.fail("/images/modes/" + std::to_string(i),
-                 "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
-        c.images.modes.push_back(m);
-      }
-    }
-  }
-  // Timing modes and clock-control calibration (issue 13; see sweep/timing_spec.h).
-  if (j.contains("timing")) {
-    const json& t = j["timing"];
-    if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
-    c.timing.modes.clear();
-    for (size_t i = 0; i < t.size(); ++i) {
-      std::string m = r.string(t[i], "/timing/" + std::to_string(i));
-      if (m != "shaded" && m != "depth" && m != "frontend")
-        r.fail("/timing/" + std::to_string(i), "unknown timing mode '" + m + "' (shaded, depth, frontend)");
-      if (std::find(c.timing.modes.begin(), c.timing.modes.end(), m) != c.timing.modes.end())
-        r.fail("/timing/" + std::to_string(i), "timing mode '" + m + "' listed twice");
-      c.timing.modes.push_back(m);
-    }
-    if (std::find(c.timing.modes.begin(), c.timing.modes.end(), "shaded") == c.timing.modes.end())
-      r.fail("/timing", "must include \"shaded\" (the case's gpu_ms is the shaded time)");
-  }
-  if (j.contains("calibration")) {
-    const json& k = j["calibration"];
-    if (k.is_boolean()) {
-      c.timing.calibrate = k.get<bool>();
-    } else {
-      r.onlyKeys(k, "/calibration", {"level", "frames", "max_tries", "min_load_s"});
-      c.timing.calibrate = true;
-      if (k.contains("level")) c.timing.level = r.integer(k["level"], "/calibration/level", 1, 64);
-      if (k.contains("frames")) c.timing.frames = r.integer(k["frames"], "/calibration/frames", 1, 1000);
-      if (k.contains("min_load_s")) c.timing.minLoadS = r.number(k["min_load_s"], "/calibration/min_load_s", 0, 60);
-      if (k.contains("max_tries")) c.timing.maxTries = r.integer(k["max_tries"], "/calibration/max_tries", 3, 1000);
-    }
-  }
-  if (j.contains("measure")) {
-    const json& me = j["measure"];
-    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold"});
-    c.measure.every = me.contains("every") ? r.integer(me["every"], "/measure/every", 0, 1000000) : 10;
-    if (me.contains("passes")) {
-      if (!me["passes"].is_array()) r.fail("/measure/passes", "expected an array of pass names");
-      c.measure.passes.clear();
-      for (size_t i = 0; i < me["passes"].size(); ++i) {
-        std::string p = r.string(me["passes"][i], "/measure/passes/" + std::to_string(i));
-        if (!allMeasurePasses().count(p))
-          r.fail("/measure/passes/" + std::to_string(i),
-                 "'" + printable(p) + "' is not one of histogram, error, image, cracks, popping, surplus");
-        c.measure.passes.insert(p);
-      }
-    }
-    if (me.contains("diff_threshold"))
-      c.measure.diffThreshold = r.integer(me["diff_threshold"], "/measure/diff_threshold", 0, 255);
-  }
-  if (j.contains("match")) {
-    const json& m = j["match"];
-    r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations"});
-    if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
-    c.match.metric = r.string(m["metric"], "/match/metric");
-    if (c.match.metric != "triangles" && c.match.metric != "err_mean_px")
-      r.fail("/match/metric", "'" + printable(c.match.metric) + "' is not one of triangles, err_mean_px");
-    c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
-    if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
-    if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);
-  }
+  parseNameSection(r, j, c);
+  parseResolutionSection(r, j, c);
+  parseGridSection(r, j, c);
+  parseFrameSection(r, j, c);
+  parseTerrainSection(r, j, baseDir, c);
+  const std::vector<int> pathFrames = parsePathSection(r, j, baseDir, c);
+  parseSchemeSection(r, j, c);
+  parseImageSection(r, j, pathFrames, c);
+  parseTimingSection(r, j, c);
+  parseCalibrationSection(r, j, c);
+  parseMeasureSection(r, j, c);
+  parseMatchSection(r, j, c);
   return c;
 }
 
