@@ -14,8 +14,8 @@ std::string resolvePath(const std::string& base, const std::string& p) {
   return base + "/" + p;
 }
 
-// A file a config names: it must exist and be a regular file (a directory opens, then reads as empty).
-std::string inputFile(const ConfigReader& r, const json& v, const std::string& ptr, const std::string& base, const char* what) {
+std::string inputFile(const ConfigReader& r, const json& v, const std::string& ptr, const std::string& base,
+                      const char* what) {
   std::string path = resolvePath(base, r.string(v, ptr));
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);

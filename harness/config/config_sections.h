@@ -12,7 +12,7 @@
 
 namespace lb {
 
-// config_sections_general.cpp
+// config_sections.cpp
 void parseNameSection(const ConfigReader& r, const nlohmann::json& j, Config& c);        // name, device
 void parseResolutionSection(const ConfigReader& r, const nlohmann::json& j, Config& c);  // resolution(s)
 void parseGridSection(const ConfigReader& r, const nlohmann::json& j, Config& c);        // grid, grids
@@ -24,10 +24,10 @@ std::vector<int> parsePathSection(const ConfigReader& r, const nlohmann::json& j
 void parseImageSection(const ConfigReader& r, const nlohmann::json& j, const std::vector<int>& pathFrames,
                        Config& c);
 
-// config_sections_terrain.cpp: terrain, terrains (each file is read now).
+// config.cpp: terrain, terrains (each file is read now).
 void parseTerrainSection(const ConfigReader& r, const nlohmann::json& j, const std::string& baseDir, Config& c);
 
-// config_sections_schemes.cpp: schemes and their parameter grids.
+// config.cpp: schemes and their parameter grids.
 void parseSchemeSection(const ConfigReader& r, const nlohmann::json& j, Config& c);
 
 // config_sections_timing.cpp
