@@ -23,11 +23,11 @@ namespace lb {
 
 using nlohmann::json;
 
-static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& t, const std::string& ptr,
-                                             const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
-                      "window", "overview", "detail"});
-  TerrainSpec spec;
+static bool isRawTerrain(const TerrainSpec& s) { return s.type == "r16" || s.type == "r32f"; }
+static bool isProceduralTerrain(const TerrainSpec& s) { return s.type == "procedural" || isGeneratedTerrain(s.type); }
+
+// The terrain's type, and no field that type does not read.
+static void parseTerrainType(const ConfigReader& r, const json& t, const std::string& ptr, TerrainSpec& spec) {
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
   static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",  "r32f",
                                                "gdal",       "spikes", "cliff", "flat", "voids"};
@@ -39,7 +39,7 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
     r.fail(ptr + "/type", "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
                           "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
   // A field the type does not read would be silently ignored: reject it instead.
-  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural" || isGeneratedTerrain(spec.type);
+  const bool raw = isRawTerrain(spec), procedural = isProceduralTerrain(spec);
   auto reason = [](const std::string& k) {
     if (k == "file") return "generated terrains are not read from a file";
     if (k == "size" || k == "seed") return "only generated terrains take a size and seed";
@@ -53,6 +53,12 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
                                                         : gdal;
     if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
   }
+}
+
+// Every field of the type, with its range; a file must exist.
+static void parseTerrainFields(const ConfigReader& r, const json& t, const std::string& ptr, const std::string& base,
+                               TerrainSpec& spec) {
+  const bool gdal = spec.type == "gdal", raw = isRawTerrain(spec), procedural = isProceduralTerrain(spec);
   if (!procedural) {
     if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
     spec.file = inputFile(r, t["file"], ptr + "/file", base, "heightmap file");
@@ -88,14 +94,11 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
     for (size_t i = 0; i < 4; ++i)
       spec.window.push_back(r.integer(w[i], ptr + "/window/" + std::to_string(i), i < 2 ? 0 : 2, 2147483647));
   }
-  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
-  if (!procedural) {
-    try {
-      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
-    } catch (const InputError& e) {
-      r.fail(ptr + "/file", e.what());
-    }
-  }
+}
+
+// One spec per seed where "seed" is a list.
+static std::vector<TerrainSpec> terrainSeeds(const ConfigReader& r, const json& t, const std::string& ptr,
+                                             TerrainSpec spec) {
   std::vector<TerrainSpec> out;
   if (t.contains("seed") && t["seed"].is_array()) {
     for (size_t i = 0; i < t["seed"].size(); ++i) {
@@ -108,6 +111,24 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
     out.push_back(spec);
   }
   return out;
+}
+
+static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& t, const std::string& ptr,
+                                             const std::string& base) {
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
+                      "window", "overview", "detail"});
+  TerrainSpec spec;
+  parseTerrainType(r, t, ptr, spec);
+  parseTerrainFields(r, t, ptr, base, spec);
+  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
+  if (!isProceduralTerrain(spec)) {
+    try {
+      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
+    } catch (const InputError& e) {
+      r.fail(ptr + "/file", e.what());
+    }
+  }
+  return terrainSeeds(r, t, ptr, spec);
 }
 
 void parseTerrainSection(const ConfigReader& r, const json& j, const std::string& baseDir, Config& c) {

@@ -84,47 +84,52 @@ std::vector<int> parsePathSection(const ConfigReader& r, const json& j, const st
   return pathFrames;
 }
 
-void parseImageSection(const ConfigReader& r, const json& j, const std::vector<int>& pathFrames, Config& c) {
-  if (j.contains("images")) {
-    const json& im = j["images"];
-    r.onlyKeys(im, "/images", {"frames", "modes", "resolution", "worst"});
-    if (im.contains("resolution")) {
-      const json& v = im["resolution"];
-      if (!v.is_array() || v.size() != 2) r.fail("/images/resolution", "expected [width, height]");
-      c.images.width = r.integer(v[0], "/images/resolution/0", 16, 8192);
-      c.images.height = r.integer(v[1], "/images/resolution/1", 16, 8192);
-    }
-    if (im.contains("worst")) {
-      if (!im["worst"].is_boolean()) r.fail("/images/worst", "expected true or false");
-      c.images.worst = im["worst"].get<bool>();
-    }
-    if (im.contains("frames")) {
-      if (!im["frames"].is_array()) r.fail("/images/frames", "expected an array of frame indices");
-      for (size_t i = 0; i < im["frames"].size(); ++i) {
-        const std::string ptr = "/images/frames/" + std::to_string(i);
-        int f = r.integer(im["frames"][i], ptr, -1000000, 1000000);
-        // A frame past a path's end would be silently left out of that path's cases.
-        for (size_t k = 0; k < pathFrames.size(); ++k)
-          if (f >= pathFrames[k] || f < -pathFrames[k])
-            r.fail(ptr, std::to_string(f) + " is outside the " + std::to_string(pathFrames[k]) + " frames of '" +
-                            c.paths[k] + "' (valid: 0.." + std::to_string(pathFrames[k] - 1) + ", or -1..-" +
-                            std::to_string(pathFrames[k]) + " from the end)");
-        c.images.frames.push_back(f);
-      }
-    }
-    c.images.modes = {"shaded"};
-    if (im.contains("modes")) {
-      c.images.modes.clear();
-      if (!im["modes"].is_array()) r.fail("/images/modes", "expected an array of image modes");
-      for (size_t i = 0; i < im["modes"].size(); ++i) {
-        std::string m = r.string(im["modes"][i], "/images/modes/" + std::to_string(i));
-        if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
-          r.fail("/images/modes/" + std::to_string(i),
-                 "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
-        c.images.modes.push_back(m);
-      }
-    }
+// images.frames: each frame must lie on every path (a frame past a path's end would be silently
+// left out of that path's cases).
+static void parseImageFrames(const ConfigReader& r, const json& frames, const std::vector<int>& pathFrames,
+                             Config& c) {
+  if (!frames.is_array()) r.fail("/images/frames", "expected an array of frame indices");
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const std::string ptr = "/images/frames/" + std::to_string(i);
+    int f = r.integer(frames[i], ptr, -1000000, 1000000);
+    for (size_t k = 0; k < pathFrames.size(); ++k)
+      if (f >= pathFrames[k] || f < -pathFrames[k])
+        r.fail(ptr, std::to_string(f) + " is outside the " + std::to_string(pathFrames[k]) + " frames of '" +
+                        c.paths[k] + "' (valid: 0.." + std::to_string(pathFrames[k] - 1) + ", or -1..-" +
+                        std::to_string(pathFrames[k]) + " from the end)");
+    c.images.frames.push_back(f);
   }
+}
+
+static void parseImageModes(const ConfigReader& r, const json& modes, Config& c) {
+  c.images.modes.clear();
+  if (!modes.is_array()) r.fail("/images/modes", "expected an array of image modes");
+  for (size_t i = 0; i < modes.size(); ++i) {
+    std::string m = r.string(modes[i], "/images/modes/" + std::to_string(i));
+    if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
+      r.fail("/images/modes/" + std::to_string(i),
+             "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
+    c.images.modes.push_back(m);
+  }
+}
+
+void parseImageSection(const ConfigReader& r, const json& j, const std::vector<int>& pathFrames, Config& c) {
+  if (!j.contains("images")) return;
+  const json& im = j["images"];
+  r.onlyKeys(im, "/images", {"frames", "modes", "resolution", "worst"});
+  if (im.contains("resolution")) {
+    const json& v = im["resolution"];
+    if (!v.is_array() || v.size() != 2) r.fail("/images/resolution", "expected [width, height]");
+    c.images.width = r.integer(v[0], "/images/resolution/0", 16, 8192);
+    c.images.height = r.integer(v[1], "/images/resolution/1", 16, 8192);
+  }
+  if (im.contains("worst")) {
+    if (!im["worst"].is_boolean()) r.fail("/images/worst", "expected true or false");
+    c.images.worst = im["worst"].get<bool>();
+  }
+  if (im.contains("frames")) parseImageFrames(r, im["frames"], pathFrames, c);
+  c.images.modes = {"shaded"};
+  if (im.contains("modes")) parseImageModes(r, im["modes"], c);
 }
 
 }  // namespace lb
