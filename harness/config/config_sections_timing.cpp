@@ -9,7 +9,7 @@ namespace lb {
 using nlohmann::json;
 
 void parseTimingSection(const ConfigReader& r, const json& j, Config& c) {
-  // Timing modes and clock-control calibration (issue 13; see config/timing_spec.h).
+  // Timing modes and clock-control calibration (config/timing_spec.h).
   if (j.contains("timing")) {
     const json& t = j["timing"];
     if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
