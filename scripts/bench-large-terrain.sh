@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Load benchmark of a large terrain (default 16385^2): load, normal map and every scheme's
 # preprocessing (errbound, planefit, density, phong), each stage's wall and CPU seconds and peak
-# resident memory, with `lodbench load-bench` (harness/sweep/load_bench.h).
+# resident memory, with `lodbench load-bench` (harness/cli/load_bench.h).
 #
 # The terrain is the procedural one with "detail": "resolution" (fBm octaves down to 2 sample
 # spacings, so the extra samples carry relief; the default 8 octaves stop at 1/192 of the extent).

@@ -7,7 +7,7 @@
 
 #include "compare/run_data.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
+#include "config/config.h"
 
 namespace lb {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "error.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
+#include "config/config.h"
 
 using namespace lb;
 

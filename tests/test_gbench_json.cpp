@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "error.h"
-#include "sweep/gbench_json.h"
+#include "results/gbench_json.h"
 #include "synthetic_run.h"
 
 namespace lb {

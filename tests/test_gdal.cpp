@@ -13,7 +13,7 @@
 
 #include "cli_run.h"
 #include "error.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/heightfield.h"
 
@@ -23,8 +23,8 @@
 
 #include "dem_crop.h"
 #include "input_error.h"
-#include "results/sha256.h"
-#include "sweep/results.h"
+#include "sha256.h"
+#include "results/write.h"
 #include "terrain/generators.h"
 #endif
 

@@ -16,10 +16,10 @@
 #include <stb/stb_image.h>
 
 #include "camera/camera_path.h"
-#include "results/sha256.h"
+#include "sha256.h"
 #include "render/scheme.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "sweep/runner.h"
 
 using namespace lb;

@@ -17,8 +17,8 @@
 #include "render/image_io.h"
 #include "report/report_tables.h"
 #include "report/run_data.h"
-#include "sweep/case_images.h"
-#include "sweep/config.h"
+#include "replay/case_images.h"
+#include "config/config.h"
 #include "sweep/runner.h"
 
 using namespace lb;

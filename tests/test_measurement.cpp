@@ -2,9 +2,9 @@
 #include <cmath>
 
 #include "gpu_fixture.h"
-#include "sweep/config.h"
-#include "sweep/measure.h"
-#include "sweep/results.h"
+#include "config/config.h"
+#include "replay/measure.h"
+#include "results/write.h"
 
 using namespace lb;
 using lbtest::gpu;

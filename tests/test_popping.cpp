@@ -6,9 +6,9 @@
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "metrics/popping.h"
-#include "sweep/config.h"
-#include "sweep/measure.h"
-#include "sweep/results.h"
+#include "config/config.h"
+#include "replay/measure.h"
+#include "results/write.h"
 
 using namespace lb;
 using lbtest::gpu;

@@ -1,7 +1,7 @@
 // The ray-cast ground truth (harness/metrics/raycast.h) on the CPU: against the independent
 // polyline ray cast that validates the error pass (tests/test_error_validation.cpp), against a
 // brute-force intersection of every cell (the max-mipmap may skip nothing it must not), and its
-// persistent cache (harness/sweep/measure.h ReferenceCache).
+// persistent cache (harness/replay/measure.h ReferenceCache).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -15,7 +15,7 @@
 
 #include "metrics/raycast.h"
 #include "render/renderer.h"
-#include "sweep/measure.h"
+#include "replay/measure.h"
 #include "terrain/heightfield.h"
 
 using namespace lb;

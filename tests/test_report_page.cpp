@@ -22,7 +22,7 @@
 #include "report/report_tables.h"
 #include "report/run_data.h"
 #include "report/scenario_table.h"
-#include "sweep/measure.h"
+#include "replay/measure.h"
 
 using namespace lb;
 using nlohmann::json;

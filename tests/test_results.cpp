@@ -12,8 +12,8 @@
 #include "compare/run_data.h"
 #include "error.h"
 #include "report/run_data.h"
-#include "sweep/config.h"
-#include "sweep/gbench_json.h"
+#include "config/config.h"
+#include "results/gbench_json.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
 

@@ -22,10 +22,10 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
-#include "results/case_identity.h"
+#include "config/case_identity.h"
 #include "results/run_dir.h"
-#include "results/sha256.h"
-#include "sweep/config.h"
+#include "sha256.h"
+#include "config/config.h"
 #include "sweep/runner.h"
 
 using namespace lb;

@@ -17,7 +17,7 @@
 #include "metrics/image_metrics.h"
 #include "metrics/popping.h"
 #include "shaders/shared.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "terrain/generators.h"
 
 using namespace lb;

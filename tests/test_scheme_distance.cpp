@@ -8,7 +8,7 @@
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
 #include "shaders/shared.h"
-#include "sweep/config.h"
+#include "config/config.h"
 
 using namespace lb;
 using lbtest::gpu;

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
 

@@ -9,9 +9,9 @@
 #include "error.h"
 #include "gpu_fixture.h"
 #include "render/probe.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "sweep/runner.h"
-#include "sweep/timing_passes.h"
+#include "replay/timing_passes.h"
 
 using namespace lb;
 using lbtest::gpu;

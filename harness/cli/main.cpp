@@ -16,17 +16,17 @@
 #include "error.h"
 #include "metrics/cracks.h"
 #include "number_text.h"
-#include "sweep/measure.h"
+#include "replay/measure.h"
 #include "sweep/merge.h"
-#include "sweep/probe_command.h"
+#include "cli/probe_command.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "render/terrain_fit.h"
 #include "report/report.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
-#include "sweep/gbench_json.h"
-#include "sweep/load_bench.h"
+#include "config/config.h"
+#include "results/gbench_json.h"
+#include "cli/load_bench.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_shape.h"
@@ -318,7 +318,7 @@ int main(int argc, char** argv) {
   probe->add_option("--out", po.out, "Write the JSON here too");
   probe->add_flag("--append", po.append, "Append rows to the --out file");
 
-  // load-bench: what a terrain costs before the first frame, stage by stage (sweep/load_bench.h).
+  // load-bench: what a terrain costs before the first frame, stage by stage (cli/load_bench.h).
   auto* loadBench = app.add_subcommand("load-bench", "Time loading a config's terrains and their preprocessing (normal map, each scheme's), with peak memory, as JSON");
   LoadBenchOptions lbo;
   loadBench->add_option("config", lbo.config, "Config file (terrains, grid, schemes and their first parameter variant)")->required();

@@ -5,7 +5,7 @@
 
 #include "compare/verdict.h"
 #include "error.h"
-#include "sweep/results.h"
+#include "results/write.h"
 
 namespace lb {
 

@@ -17,12 +17,12 @@ using nlohmann::json;
 static void addCase(RunData& run, const CaseFile& cf) try {
   const json& cj = cf.doc;
   CaseData c;
+  readCaseRecord(c, cj);
   c.id = cf.id();
   c.file = cf.file;
   c.status = cj.value("status", "ok");
-  c.reason = cj.value("reason", "");
+  c.reason = cj.value("reason", "");  // of the wrong type: an error here, as for every field compare needs
   c.frames = cj["frames"];
-  if (cj.contains("summary") && cj["summary"].is_object()) c.summary = cj["summary"];
   if (c.status == "ok") {
     c.rounds = 1;
     for (auto& f : c.frames)

@@ -7,16 +7,13 @@
 #include <vector>
 
 #include "results/run_dir.h"
+#include "results/run_read.h"
 
 namespace lb {
 
-struct CaseData {
-  std::string id;
-  std::string file;           // the case file it came from (first round)
-  std::string status = "ok";  // ok | failed | skipped
-  std::string reason;
-  nlohmann::json frames = nlohmann::json::array();  // per-frame records of the first round
-  nlohmann::json summary = nlohmann::json::object();
+// A case as compare reads it: its record (results/run_read.h; status "ok" where the case file
+// names none) and the GPU times of every round pooled into it.
+struct CaseData : CaseRecord {
   std::vector<double> gpuMs;         // every timing frame of every ok round, pooled
   std::vector<double> roundMedians;  // median GPU ms of each round, in run order
   int rounds = 0;                    // ok rounds pooled into gpuMs

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "sweep/results.h"
+#include "results/write.h"
 
 namespace lb {
 

@@ -14,7 +14,7 @@
 #include "report/scenario_summary.h"
 #include "report/scenario_table.h"
 #include "report/run_data.h"
-#include "sweep/results.h"
+#include "results/write.h"
 
 namespace lb {
 

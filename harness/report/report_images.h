@@ -2,7 +2,7 @@
 // The report's image strips (one case at one frame, its modes side by side, click to enlarge) and
 // the legends of the false-colour modes, whose colours mirror the code that paints them:
 // heat map and wireframe: heat() in shaders/terrain.frag; error map: errorImage() in
-// harness/sweep/measure.cpp; crack mask: crackMaskImage() in harness/metrics/cracks.cpp.
+// harness/replay/measure.cpp; crack mask: crackMaskImage() in harness/metrics/cracks.cpp.
 #include <string>
 #include <utility>
 #include <vector>

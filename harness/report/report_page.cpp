@@ -10,7 +10,7 @@
 #include "report/report_tables.h"
 #include "report/scenario_table.h"
 #include "report/table.h"
-#include "sweep/results.h"
+#include "results/write.h"
 
 namespace lb {
 

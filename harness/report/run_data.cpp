@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "results/run_dir.h"
+#include "results/run_read.h"
 
 namespace lb {
 
@@ -40,31 +41,6 @@ static std::string paramsLabel(const json& params) {
     s += k + "=" + (v.is_number() ? formatValue(v.get<double>()) : v.dump());
   }
   return s.empty() ? "defaults" : s;
-}
-
-// Fields from a summary.json entry or a case file (the case file wins: it has the terrain object).
-static void fillCase(ReportCase& c, const json& j) {
-  if (j.contains("scheme")) c.scheme = str(j, "scheme");
-  if (j.contains("status")) c.status = str(j, "status");
-  if (j.contains("reason")) c.reason = str(j, "reason");
-  if (j.contains("path")) c.path = str(j, "path");
-  if (j.contains("params") && j["params"].is_object()) c.params = j["params"];
-  if (j.contains("summary") && j["summary"].is_object()) c.summary = j["summary"];
-  if (j.contains("frames") && j["frames"].is_array()) c.frames = j["frames"];
-  if (auto t = j.find("terrain"); t != j.end())
-    c.terrain = t->is_object() ? str(*t, "label") : t->is_string() ? t->get<std::string>() : "";
-  if (auto r = j.find("resolution");
-      r != j.end() && r->is_array() && r->size() == 2 && (*r)[0].is_number_integer() && (*r)[1].is_number_integer()) {
-    c.width = (*r)[0].get<int>();
-    c.height = (*r)[1].get<int>();
-  }
-  if (auto g = j.find("grid"); g != j.end() && g->is_number_integer()) {
-    c.grid = g->get<int>();
-  } else if (auto in = j.find("inputs"); in != j.end() && in->is_object() && in->contains("measurement")) {
-    const json& m = (*in)["measurement"];
-    if (m.is_object() && m.contains("grid") && m["grid"].is_number_integer()) c.grid = m["grid"].get<int>();
-  }
-  if (auto t = j.find("target_area_px"); t != j.end() && t->is_number()) c.targetAreaPx = t->get<double>();
 }
 
 static void scanImages(ReportRun& run) {
@@ -193,7 +169,7 @@ ReportRun loadReportRun(const std::string& dir) {
     for (auto& j : (*summary)["cases"]) {
       ReportCase c;
       c.id = str(j, "case_id");
-      fillCase(c, j);
+      readCaseRecord(c, j);
       index[c.id] = run.cases.size();
       run.cases.push_back(std::move(c));
     }
@@ -205,7 +181,7 @@ ReportRun loadReportRun(const std::string& dir) {
       run.cases.push_back(ReportCase{});
       run.cases.back().id = id;
     }
-    fillCase(run.cases[index[id]], cf.doc);
+    readCaseRecord(run.cases[index[id]], cf.doc);
   }
   for (auto& c : run.cases)
     if (c.status.empty()) c.status = "unknown";

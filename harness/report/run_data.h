@@ -1,26 +1,23 @@
 #pragma once
 // A finished (or interrupted) run directory read back for the report: run.json, summary.json and
-// cases/*.json (docs/results-format.md) through results/run_dir.h. A missing summary.json or
-// metric is not an error (the report says what it could not show); an unreadable case file is.
+// cases/*.json (docs/results-format.md) through results/run_dir.h and results/run_read.h. A
+// missing summary.json or metric is not an error (the report says what it could not show); an
+// unreadable case file is.
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "results/run_read.h"
+
 namespace lb {
 
-struct ReportCase {
-  std::string id, scheme, status, reason, path, terrain;
+// A case as the report shows it: its record (results/run_read.h) and the labels it goes by.
+struct ReportCase : CaseRecord {
   std::string paramsLabel;  // "tri_size=2, alpha=0.75", or "defaults"
   std::string label;        // scheme + parameters, for legends
   std::string scenario;     // camera path stem (+ terrain, resolution where the run varies them)
-  int width = 0, height = 0;
-  int grid = 0;  // patches per side (case file "grid", else inputs.measurement.grid); 0 unknown
-  nlohmann::json params = nlohmann::json::object();
-  nlohmann::json summary = nlohmann::json::object();
-  nlohmann::json frames = nlohmann::json::array();  // per-frame records; empty without a case file
-  std::optional<double> targetAreaPx;
 };
 
 // Images of one case: frame -> mode -> path relative to the run directory.

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "error.h"
-#include "results/case_identity.h"
-#include "sweep/config.h"
-#include "sweep/results.h"
+#include "config/case_identity.h"
+#include "config/config.h"
+#include "results/write.h"
 
 namespace lb {
 

@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "error.h"
+#include "results/gbench_json.h"
 #include "results/run_dir.h"
-#include "sweep/gbench_json.h"
-#include "sweep/results.h"
-#include "sweep/runner.h"
+#include "results/run_json.h"
+#include "results/write.h"
 
 namespace lb {
 
@@ -51,8 +51,7 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
       for (auto& e : fs::directory_iterator(d + "/images"))
         fs::copy_file(e.path(), fs::path(outDir) / "images" / e.path().filename(), fs::copy_options::overwrite_existing);
   }
-  json run = {{"schema_version", kSchemaVersion}, {"context", first}, {"merged_from", inputs}, {"forced", force},
-              {"start_time", runs[0].value("start_time", "")}, {"end_time", isoTimeUtc()}};
+  json run = mergedRunJson(first, inputs, force, runs[0].value("start_time", ""));
   writeFileAtomic(outDir + "/run.json", run.dump(2));
   writeAggregates(outDir, first);
   writeGoogleBenchmarkJson(outDir);

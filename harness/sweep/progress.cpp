@@ -8,7 +8,7 @@
 #include <set>
 
 #include "camera/camera_path.h"
-#include "sweep/config.h"
+#include "config/config.h"
 
 namespace lb {
 
@@ -16,7 +16,7 @@ std::vector<CaseWork> plannedWork(const Config& config, const std::vector<Case>&
   std::map<std::string, int> framesOf;  // per path file
   std::set<std::string> truthMade;        // terrain, path and resolution whose truth an earlier case makes
   const bool truth = config.measure.on("image") || config.measure.on("cracks");
-  int modes = 1;  // shaded, plus one replay per other timing mode (sweep/timing_passes.h)
+  int modes = 1;  // shaded, plus one replay per other timing mode (replay/timing_passes.h)
   for (const std::string& m : config.timing.modes) modes += m != "shaded";
   std::vector<CaseWork> out;
   for (const Case& c : cases) {

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "replay/case_progress.h"
+
 namespace lb {
 
 struct Config;
@@ -67,9 +69,8 @@ std::string formatDuration(double seconds);
 
 // The sweep's progress on stderr: a line per case with the estimate for the whole rest of the
 // sweep, and in-place frame counters within a case (one line per tenth when not a terminal).
-class SweepProgress {
+class SweepProgress : public CaseProgress {
  public:
-  enum class Phase { Setup, Timing, Measure, Images };
   // truth(): ray casts made so far and their seconds (ReferenceCache), kept apart from the phases.
   struct Truth {
     int rayCasts = 0;
@@ -77,8 +78,8 @@ class SweepProgress {
   };
   SweepProgress(bool enabled, std::vector<CaseWork> cases, std::function<Truth()> truth = {});
   void startCase(size_t index, const std::string& id);
-  void phase(Phase p);  // the case enters phase p; the time of the previous phase is recorded
-  void frame(int done, int total);  // progress within the current phase (timing or measurement)
+  void phase(Phase p) override;  // the case enters phase p; the time of the previous phase is recorded
+  void frame(int done, int total) override;  // progress within the current phase (timing or measurement)
   void endCase(bool ok);            // records the overhead (only of a case that finished)
   const EtaEstimator& estimator() const { return eta_; }
 

@@ -1,18 +1,13 @@
 #pragma once
 // Replays every case of a config and writes results as it goes; a failing case is recorded as
 // failed with its reason and the sweep goes on. Finished cases in an existing run dir are kept.
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "results/run_dir.h"
-#include "sweep/config.h"
-#include "sweep/results.h"
+#include "config/config.h"
+#include "replay/run_case.h"
 
 namespace lb {
-
-struct Context;
-class SweepProgress;
 
 struct RunOptions {
   std::string outDir;      // run directory; "" = results/<name>/<utc-time>
@@ -21,13 +16,6 @@ struct RunOptions {
   int shardIndex = 0, shardCount = 1;  // run cases whose index % shardCount == shardIndex
   bool rerunChanged = false;  // resume: rerun finished cases whose inputs changed (else refuse)
 };
-
-// Thrown when a stop was requested (SIGINT/SIGTERM): the running case is dropped, finished ones stay.
-struct Interrupted : std::runtime_error {
-  Interrupted() : std::runtime_error("interrupted") {}
-};
-// Async-signal-safe: sets a flag the replay loop checks between frames.
-void requestStop();
 
 struct RunTotals {
   std::string dir;
@@ -41,10 +29,5 @@ RunTotals runSweep(const Config& config, const RunOptions& options);
 std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount);
 // Parses "i/n" (0 <= i < n); throws InputError naming the flag.
 void parseShard(const std::string& text, int& index, int& count);
-// One case on an existing device context (used by tests and the sweep); progress may be null.
-CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
-                   SweepProgress* progress, ReferenceCache& refs);
-RenderMode parseRenderMode(const std::string& name);
-const char* renderModeName(RenderMode m);
 
 }  // namespace lb

@@ -10,7 +10,7 @@
 namespace lb {
 
 // What a file terrain was read from, recorded in each case file as "terrain.source"
-// (sweep/results.cpp). driver "" means the terrain was generated, not read.
+// (results/write.cpp). driver "" means the terrain was generated, not read.
 struct TerrainSource {
   std::string driver;                     // GDAL's driver ("GTiff", "SRTMHGT", ...) or hgt, png16, r16, r32f
   int rasterWidth = 0, rasterHeight = 0;  // the whole file, before window and overview

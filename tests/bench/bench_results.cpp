@@ -8,8 +8,8 @@
 #include "compare/significance.h"
 #include "metrics/image_metrics.h"
 #include "metrics/stats.h"
-#include "sweep/config.h"
-#include "sweep/results.h"
+#include "config/config.h"
+#include "results/write.h"
 
 namespace lb {
 

@@ -4,6 +4,7 @@
 // equal cost or equal quality.
 #include <string>
 
+#include "config/match_spec.h"
 #include "render/scheme.h"
 
 namespace lb {
@@ -13,14 +14,6 @@ struct Config;
 struct Case;
 struct Heightfield;
 struct CameraPath;
-
-struct MatchSpec {
-  std::string metric;  // "" (off) | "triangles" | "err_mean_px"
-  double value = 0;    // target: mean triangles per frame, or mean error in pixels
-  int frames = 8;      // evaluation frames spread evenly over the path
-  int iterations = 12; // bisection steps
-  bool on() const { return !metric.empty(); }
-};
 
 struct MatchResult {
   std::string param;     // the parameter searched ("" when the scheme has none)

@@ -1,4 +1,4 @@
-#include "sweep/results.h"
+#include "results/write.h"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 
 #include "metrics/stats.h"
 #include "shaders/shared.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "vk/context.h"
 
 namespace lb {
@@ -189,7 +189,7 @@ static json sourceJson(const Case& c, const TerrainSource& s) {
           {"overview", orNull(s.overview > 0, {{"level", s.overview}, {"method", s.overviewMethod}})},
           {"extent", s.extent},
           {"extent_source", s.extentSource},
-          // The digest the case's identity already took of the file (results/case_identity.h).
+          // The digest the case's identity already took of the file (config/case_identity.h).
           {"sha256", inputs.is_object() && inputs.contains("sha256") ? inputs["sha256"] : json(nullptr)}};
 }
 

@@ -1,4 +1,4 @@
-#include "sweep/gbench_json.h"
+#include "results/gbench_json.h"
 
 #include <unistd.h>
 
@@ -14,7 +14,7 @@
 #include "error.h"
 #include "metrics/stats.h"
 #include "results/run_dir.h"
-#include "sweep/results.h"
+#include "results/write.h"
 
 namespace lb {
 

@@ -1,5 +1,5 @@
 // The probe subcommand: rows of minimal-loop (and lodbench) GPU times as JSON.
-#include "sweep/probe_command.h"
+#include "cli/probe_command.h"
 
 #include <cstdio>
 #include <fstream>
@@ -12,9 +12,9 @@
 #include "metrics/stats.h"
 #include "render/probe.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
-#include "sweep/results.h"
-#include "sweep/timing_passes.h"
+#include "config/config.h"
+#include "results/write.h"
+#include "replay/timing_passes.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 

@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "camera/camera_path.h"
-#include "sweep/config.h"
-#include "sweep/measure.h"
+#include "config/config.h"
+#include "replay/measure.h"
 
 namespace lb {
 
@@ -37,7 +37,7 @@ struct CaseImageInputs {
   const Scheme& scheme;
   Renderer& renderer;  // the case's own: its parameters, and crack masks measured at its resolution
   const Heightfield& terrain;
-  std::string terrainKey;  // ReferenceCache key of the terrain (runner.cpp referenceKey)
+  std::string terrainKey;  // ReferenceCache key of the terrain (run_case.cpp referenceKey)
   ReferenceCache& refs;
   std::function<CameraPose(int)> pose;
   std::string imageDir;

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "render/scheme.h"
-#include "sweep/matched.h"
-#include "sweep/measure.h"
-#include "sweep/timing_spec.h"
+#include "config/match_spec.h"
+#include "config/measure_spec.h"
+#include "config/timing_spec.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -23,7 +23,7 @@ struct ImageRequest {
   std::vector<int> frames;          // path frame indices (negative counts from the end)
   std::vector<std::string> modes;   // shaded | heatmap | wireframe | error | cracks
   // Size of the images: a case's frames are drawn at this size with the case's own
-  // tessellation (sweep/case_images.h); a case of another aspect ratio gets the smallest size of
+  // tessellation (replay/case_images.h); a case of another aspect ratio gets the smallest size of
   // its aspect ratio that covers it.
   int width = 640, height = 360;
   bool worst = true;  // also image each case's worst measured frames (summary worst_frames)
@@ -61,7 +61,7 @@ struct Case {
   std::string path;
   int width = 0, height = 0;
   int grid = 32;
-  // What defines the case (results/case_identity.h) and its SHA-256: resume reuses a finished
+  // What defines the case (config/case_identity.h) and its SHA-256: resume reuses a finished
   // case only when the digest is unchanged.
   nlohmann::json inputs;
   std::string digest;

@@ -11,7 +11,7 @@
 
 #include "camera/camera_path.h"
 #include "render/renderer.h"
-#include "sweep/timing_spec.h"
+#include "config/timing_spec.h"
 
 namespace lb {
 

@@ -1,10 +1,10 @@
-#include "sweep/json_strict.h"
+#include "config/json_strict.h"
 
 #include <set>
 #include <vector>
 
 #include "error.h"
-#include "sweep/json_lines.h"
+#include "config/json_lines.h"
 
 namespace lb {
 namespace {

@@ -1,4 +1,4 @@
-#include "sweep/config.h"
+#include "config/config.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,77 +8,26 @@
 #include <set>
 #include <sstream>
 
-#include "camera/camera_path.h"
+#include "config/case_identity.h"
+#include "config/config_sections.h"
+#include "config/json_lines.h"
+#include "config/json_strict.h"
 #include "error.h"
 #include "number_text.h"
-#include "results/case_identity.h"
-#include "terrain/terrain_cache.h"
+#include "schemes/registry.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
-#include "schemes/registry.h"
-#include "sweep/json_lines.h"
-#include "sweep/json_strict.h"
+#include "terrain/terrain_cache.h"
 
 namespace lb {
-namespace {
 
 using nlohmann::json;
 
-struct Reader {
-  std::string file;
-  std::map<std::string, int> lines;
+static bool isRawTerrain(const TerrainSpec& s) { return s.type == "r16" || s.type == "r32f"; }
+static bool isProceduralTerrain(const TerrainSpec& s) { return s.type == "procedural" || isGeneratedTerrain(s.type); }
 
-  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
-    auto it = lines.find(ptr);
-    std::string where = file + (it != lines.end() ? ":" + std::to_string(it->second) : "");
-    throw InputError(where + ": field '" + (ptr.empty() ? "/" : ptr) + "': " + msg);
-  }
-  void onlyKeys(const json& obj, const std::string& ptr, const std::set<std::string>& allowed) const {
-    if (!obj.is_object()) fail(ptr, "expected an object");
-    for (auto& [k, v] : obj.items())
-      if (!allowed.count(k)) {
-        std::string list;
-        for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(ptr + "/" + printable(k), "unknown key (allowed: " + list + ")");
-      }
-  }
-  double number(const json& v, const std::string& ptr, double lo, double hi) const {
-    if (!v.is_number()) fail(ptr, "expected a number, got " + printable(v.dump()));
-    double d = v.get<double>();
-    if (!std::isfinite(d) || d < lo || d > hi) {
-      fail(ptr, numberText(d) + " is outside [" + numberText(lo) + ", " + numberText(hi) + "]");
-    }
-    return d;
-  }
-  int integer(const json& v, const std::string& ptr, int lo, int hi) const {
-    double d = number(v, ptr, lo, hi);
-    if (d != std::floor(d)) fail(ptr, "expected an integer, got " + v.dump());
-    return int(d);
-  }
-  std::string string(const json& v, const std::string& ptr) const {
-    if (!v.is_string()) fail(ptr, "expected a string, got " + printable(v.dump()));
-    return v.get<std::string>();
-  }
-};
-
-std::string resolvePath(const std::string& base, const std::string& p) {
-  if (p.empty() || p[0] == '/' || base.empty()) return p;
-  return base + "/" + p;
-}
-
-// A file a config names: it must exist and be a regular file (a directory opens, then reads as empty).
-std::string inputFile(const Reader& r, const json& v, const std::string& ptr, const std::string& base, const char* what) {
-  std::string path = resolvePath(base, r.string(v, ptr));
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);
-  if (!std::ifstream(path)) r.fail(ptr, "cannot open " + std::string(what) + " '" + printable(path, 200) + "'");
-  return path;
-}
-
-std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std::string& ptr, const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
-                      "window", "overview", "detail"});
-  TerrainSpec spec;
+// The terrain's type, and no field that type does not read.
+static void parseTerrainType(const ConfigReader& r, const json& t, const std::string& ptr, TerrainSpec& spec) {
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
   static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",  "r32f",
                                                "gdal",       "spikes", "cliff", "flat", "voids"};
@@ -90,7 +39,7 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     r.fail(ptr + "/type", "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
                           "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
   // A field the type does not read would be silently ignored: reject it instead.
-  const bool raw = spec.type == "r16" || spec.type == "r32f", procedural = spec.type == "procedural" || isGeneratedTerrain(spec.type);
+  const bool raw = isRawTerrain(spec), procedural = isProceduralTerrain(spec);
   auto reason = [](const std::string& k) {
     if (k == "file") return "generated terrains are not read from a file";
     if (k == "size" || k == "seed") return "only generated terrains take a size and seed";
@@ -104,6 +53,12 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
                                                         : gdal;
     if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
   }
+}
+
+// Every field of the type, with its range; a file must exist.
+static void parseTerrainFields(const ConfigReader& r, const json& t, const std::string& ptr, const std::string& base,
+                               TerrainSpec& spec) {
+  const bool gdal = spec.type == "gdal", raw = isRawTerrain(spec), procedural = isProceduralTerrain(spec);
   if (!procedural) {
     if (!t.contains("file")) r.fail(ptr, "terrain type '" + spec.type + "' needs a 'file'");
     spec.file = inputFile(r, t["file"], ptr + "/file", base, "heightmap file");
@@ -139,14 +94,11 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
     for (size_t i = 0; i < 4; ++i)
       spec.window.push_back(r.integer(w[i], ptr + "/window/" + std::to_string(i), i < 2 ? 0 : 2, 2147483647));
   }
-  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
-  if (!procedural) {
-    try {
-      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
-    } catch (const InputError& e) {
-      r.fail(ptr + "/file", e.what());
-    }
-  }
+}
+
+// One spec per seed where "seed" is a list.
+static std::vector<TerrainSpec> terrainSeeds(const ConfigReader& r, const json& t, const std::string& ptr,
+                                             TerrainSpec spec) {
   std::vector<TerrainSpec> out;
   if (t.contains("seed") && t["seed"].is_array()) {
     for (size_t i = 0; i < t["seed"].size(); ++i) {
@@ -161,9 +113,43 @@ std::vector<TerrainSpec> parseTerrain(const Reader& r, const json& t, const std:
   return out;
 }
 
+static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& t, const std::string& ptr,
+                                             const std::string& base) {
+  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
+                      "window", "overview", "detail"});
+  TerrainSpec spec;
+  parseTerrainType(r, t, ptr, spec);
+  parseTerrainFields(r, t, ptr, base, spec);
+  // Read the file now, so a bad heightmap stops the run before any case instead of failing each one.
+  if (!isProceduralTerrain(spec)) {
+    try {
+      sharedHeightfield(spec);  // kept when large: the cases take it from there instead of reading it again
+    } catch (const InputError& e) {
+      r.fail(ptr + "/file", e.what());
+    }
+  }
+  return terrainSeeds(r, t, ptr, spec);
+}
+
+void parseTerrainSection(const ConfigReader& r, const json& j, const std::string& baseDir, Config& c) {
+  if (j.contains("terrain")) {
+    auto t = parseTerrain(r, j["terrain"], "/terrain", baseDir);
+    c.terrains.insert(c.terrains.end(), t.begin(), t.end());
+  }
+  if (j.contains("terrains")) {
+    if (!j["terrains"].is_array()) r.fail("/terrains", "expected an array");
+    for (size_t i = 0; i < j["terrains"].size(); ++i) {
+      auto t = parseTerrain(r, j["terrains"][i], "/terrains/" + std::to_string(i), baseDir);
+      c.terrains.insert(c.terrains.end(), t.begin(), t.end());
+    }
+  }
+  if (c.terrains.empty()) c.terrains.push_back(TerrainSpec{});
+}
+
 // Parameters named <x>min / <x>max bound a range whose width divides (distance falloff): an empty
 // range is rejected for every scheme alike, so one scheme cannot accept what another refuses.
-void requireRanges(const Reader& r, const SchemeInfo& info, const ParamValues& pv, const std::string& ptr) {
+static void requireRanges(const ConfigReader& r, const SchemeInfo& info, const ParamValues& pv,
+                          const std::string& ptr) {
   for (auto& p : info.params) {
     const size_t n = p.name.size();
     if (n < 4 || p.name.compare(n - 3, 3, "min") != 0) continue;
@@ -177,7 +163,7 @@ void requireRanges(const Reader& r, const SchemeInfo& info, const ParamValues& p
   }
 }
 
-SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) {
+static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::string& ptr) {
   SchemeEntry e;
   json params = json::object();
   if (s.is_string()) {
@@ -231,189 +217,34 @@ SchemeEntry parseScheme(const Reader& r, const json& s, const std::string& ptr) 
   return e;
 }
 
-}  // namespace
+void parseSchemeSection(const ConfigReader& r, const json& j, Config& c) {
+  if (!j.contains("schemes") || !j["schemes"].is_array() || j["schemes"].empty())
+    r.fail("/schemes", "expected a non-empty array of schemes (known: " + schemeNames() + ")");
+  for (size_t i = 0; i < j["schemes"].size(); ++i)
+    c.schemes.push_back(parseScheme(r, j["schemes"][i], "/schemes/" + std::to_string(i)));
+}
 
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
   json j = parseJsonStrict(text, file);
-  Reader r{file, jsonLineMap(text)};
+  ConfigReader r{file, jsonLineMap(text)};
   r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "grids", "fps", "warmup_frames", "max_frames",
                      "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
                      "description", "timing", "calibration"});
   Config c;
   c.file = file;
   c.raw = j;
-  if (j.contains("name")) c.name = r.string(j["name"], "/name");
-  if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos)
-    r.fail("/name", "must be a non-empty name without '/', '\\' or spaces");
-  if (j.contains("device")) c.device = r.string(j["device"], "/device");
-  for (const char* key : {"resolution", "resolutions"}) {
-    if (!j.contains(key)) continue;
-    const json& v = j[key];
-    std::string ptr = std::string("/") + key;
-    auto pair = [&](const json& p, const std::string& pp) {
-      if (!p.is_array() || p.size() != 2) r.fail(pp, "expected [width, height]");
-      int w = r.integer(p[0], pp + "/0", 16, 8192);
-      int h = r.integer(p[1], pp + "/1", 16, 8192);
-      return std::make_pair(w, h);
-    };
-    c.resolutions.clear();
-    if (v.is_array() && !v.empty() && v[0].is_array()) {
-      for (size_t i = 0; i < v.size(); ++i) c.resolutions.push_back(pair(v[i], ptr + "/" + std::to_string(i)));
-    } else {
-      c.resolutions.push_back(pair(v, ptr));
-    }
-  }
-  if (j.contains("grid") && j.contains("grids")) r.fail("/grids", "give either grid or grids, not both");
-  if (j.contains("grid")) c.grid = r.integer(j["grid"], "/grid", 1, 1024);
-  c.grids = {c.grid};
-  if (j.contains("grids")) {
-    const json& g = j["grids"];
-    if (!g.is_array() || g.empty()) r.fail("/grids", "expected a non-empty list of patch counts per side");
-    c.grids.clear();
-    for (size_t i = 0; i < g.size(); ++i) {
-      std::string at = "/grids/" + std::to_string(i);
-      c.grids.push_back(r.integer(g[i], at, 1, 1024));
-      if (std::count(c.grids.begin(), c.grids.end(), c.grids.back()) > 1) r.fail(at, "grid listed twice; remove one");
-    }
-    c.grid = c.grids.front();
-  }
-  if (j.contains("fps")) c.fps = r.number(j["fps"], "/fps", 1, 1000);
-  if (j.contains("warmup_frames")) c.warmupFrames = r.integer(j["warmup_frames"], "/warmup_frames", 0, 100000);
-  if (j.contains("max_frames")) c.maxFrames = r.integer(j["max_frames"], "/max_frames", 0, 10000000);
-  if (j.contains("case_timeout_s")) c.caseTimeoutS = r.number(j["case_timeout_s"], "/case_timeout_s", 0, 1e7);
-  if (j.contains("repetitions")) c.repetitions = r.integer(j["repetitions"], "/repetitions", 1, 1000);
-  if (j.contains("terrain")) {
-    auto t = parseTerrain(r, j["terrain"], "/terrain", baseDir);
-    c.terrains.insert(c.terrains.end(), t.begin(), t.end());
-  }
-  if (j.contains("terrains")) {
-    if (!j["terrains"].is_array()) r.fail("/terrains", "expected an array");
-    for (size_t i = 0; i < j["terrains"].size(); ++i) {
-      auto t = parseTerrain(r, j["terrains"][i], "/terrains/" + std::to_string(i), baseDir);
-      c.terrains.insert(c.terrains.end(), t.begin(), t.end());
-    }
-  }
-  if (c.terrains.empty()) c.terrains.push_back(TerrainSpec{});
-  std::vector<int> pathFrames;  // frames each path gives at this fps and max_frames
-  auto addPath = [&](const json& p, const std::string& ptr) {
-    std::string path = inputFile(r, p, ptr, baseDir, "camera path");
-    // Parse it now: a malformed CSV stops the run before any case (with the CSV's own line).
-    try {
-      int frames = frameCount(loadCameraPath(path), c.fps);
-      pathFrames.push_back(c.maxFrames > 0 ? std::min(frames, c.maxFrames) : frames);
-    } catch (const InputError& e) {
-      r.fail(ptr, e.what());
-    }
-    c.paths.push_back(path);
-  };
-  if (j.contains("path")) addPath(j["path"], "/path");
-  if (j.contains("paths")) {
-    if (!j["paths"].is_array()) r.fail("/paths", "expected an array of CSV files");
-    for (size_t i = 0; i < j["paths"].size(); ++i) addPath(j["paths"][i], "/paths/" + std::to_string(i));
-  }
-  if (c.paths.empty()) r.fail("", "no camera path: set 'paths' to a list of CSV files");
-  if (!j.contains("schemes") || !j["schemes"].is_array() || j["schemes"].empty())
-    r.fail("/schemes", "expected a non-empty array of schemes (known: " + schemeNames() + ")");
-  for (size_t i = 0; i < j["schemes"].size(); ++i)
-    c.schemes.push_back(parseScheme(r, j["schemes"][i], "/schemes/" + std::to_string(i)));
-  if (j.contains("images")) {
-    const json& im = j["images"];
-    r.onlyKeys(im, "/images", {"frames", "modes", "resolution", "worst"});
-    if (im.contains("resolution")) {
-      const json& v = im["resolution"];
-      if (!v.is_array() || v.size() != 2) r.fail("/images/resolution", "expected [width, height]");
-      c.images.width = r.integer(v[0], "/images/resolution/0", 16, 8192);
-      c.images.height = r.integer(v[1], "/images/resolution/1", 16, 8192);
-    }
-    if (im.contains("worst")) {
-      if (!im["worst"].is_boolean()) r.fail("/images/worst", "expected true or false");
-      c.images.worst = im["worst"].get<bool>();
-    }
-    if (im.contains("frames")) {
-      if (!im["frames"].is_array()) r.fail("/images/frames", "expected an array of frame indices");
-      for (size_t i = 0; i < im["frames"].size(); ++i) {
-        const std::string ptr = "/images/frames/" + std::to_string(i);
-        int f = r.integer(im["frames"][i], ptr, -1000000, 1000000);
-        // A frame past a path's end would be silently left out of that path's cases.
-        for (size_t k = 0; k < pathFrames.size(); ++k)
-          if (f >= pathFrames[k] || f < -pathFrames[k])
-            r.fail(ptr, std::to_string(f) + " is outside the " + std::to_string(pathFrames[k]) + " frames of '" +
-                            c.paths[k] + "' (valid: 0.." + std::to_string(pathFrames[k] - 1) + ", or -1..-" +
-                            std::to_string(pathFrames[k]) + " from the end)");
-        c.images.frames.push_back(f);
-      }
-    }
-    c.images.modes = {"shaded"};
-    if (im.contains("modes")) {
-      c.images.modes.clear();
-      if (!im["modes"].is_array()) r.fail("/images/modes", "expected an array of image modes");
-      for (size_t i = 0; i < im["modes"].size(); ++i) {
-        std::string m = r.string(im["modes"][i], "/images/modes/" + std::to_string(i));
-        if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
-          r.fail("/images/modes/" + std::to_string(i),
-                 "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
-        c.images.modes.push_back(m);
-      }
-    }
-  }
-  // Timing modes and clock-control calibration (see sweep/timing_spec.h).
-  if (j.contains("timing")) {
-    const json& t = j["timing"];
-    if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
-    c.timing.modes.clear();
-    for (size_t i = 0; i < t.size(); ++i) {
-      std::string m = r.string(t[i], "/timing/" + std::to_string(i));
-      if (m != "shaded" && m != "depth" && m != "frontend")
-        r.fail("/timing/" + std::to_string(i), "unknown timing mode '" + m + "' (shaded, depth, frontend)");
-      if (std::find(c.timing.modes.begin(), c.timing.modes.end(), m) != c.timing.modes.end())
-        r.fail("/timing/" + std::to_string(i), "timing mode '" + m + "' listed twice");
-      c.timing.modes.push_back(m);
-    }
-    if (std::find(c.timing.modes.begin(), c.timing.modes.end(), "shaded") == c.timing.modes.end())
-      r.fail("/timing", "must include \"shaded\" (the case's gpu_ms is the shaded time)");
-  }
-  if (j.contains("calibration")) {
-    const json& k = j["calibration"];
-    if (k.is_boolean()) {
-      c.timing.calibrate = k.get<bool>();
-    } else {
-      r.onlyKeys(k, "/calibration", {"level", "frames", "max_tries", "min_load_s"});
-      c.timing.calibrate = true;
-      if (k.contains("level")) c.timing.level = r.integer(k["level"], "/calibration/level", 1, 64);
-      if (k.contains("frames")) c.timing.frames = r.integer(k["frames"], "/calibration/frames", 1, 1000);
-      if (k.contains("min_load_s")) c.timing.minLoadS = r.number(k["min_load_s"], "/calibration/min_load_s", 0, 60);
-      if (k.contains("max_tries")) c.timing.maxTries = r.integer(k["max_tries"], "/calibration/max_tries", 3, 1000);
-    }
-  }
-  if (j.contains("measure")) {
-    const json& me = j["measure"];
-    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold"});
-    c.measure.every = me.contains("every") ? r.integer(me["every"], "/measure/every", 0, 1000000) : 10;
-    if (me.contains("passes")) {
-      if (!me["passes"].is_array()) r.fail("/measure/passes", "expected an array of pass names");
-      c.measure.passes.clear();
-      for (size_t i = 0; i < me["passes"].size(); ++i) {
-        std::string p = r.string(me["passes"][i], "/measure/passes/" + std::to_string(i));
-        if (!allMeasurePasses().count(p))
-          r.fail("/measure/passes/" + std::to_string(i),
-                 "'" + printable(p) + "' is not one of histogram, error, image, cracks, popping, surplus");
-        c.measure.passes.insert(p);
-      }
-    }
-    if (me.contains("diff_threshold"))
-      c.measure.diffThreshold = r.integer(me["diff_threshold"], "/measure/diff_threshold", 0, 255);
-  }
-  if (j.contains("match")) {
-    const json& m = j["match"];
-    r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations"});
-    if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
-    c.match.metric = r.string(m["metric"], "/match/metric");
-    if (c.match.metric != "triangles" && c.match.metric != "err_mean_px")
-      r.fail("/match/metric", "'" + printable(c.match.metric) + "' is not one of triangles, err_mean_px");
-    c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
-    if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
-    if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);
-  }
+  parseNameSection(r, j, c);
+  parseResolutionSection(r, j, c);
+  parseGridSection(r, j, c);
+  parseFrameSection(r, j, c);
+  parseTerrainSection(r, j, baseDir, c);
+  const std::vector<int> pathFrames = parsePathSection(r, j, baseDir, c);
+  parseSchemeSection(r, j, c);
+  parseImageSection(r, j, pathFrames, c);
+  parseTimingSection(r, j, c);
+  parseCalibrationSection(r, j, c);
+  parseMeasureSection(r, j, c);
+  parseMatchSection(r, j, c);
   return c;
 }
 

@@ -1,10 +1,10 @@
-#include "sweep/matched.h"
+#include "replay/matched.h"
 
 #include <cmath>
 
 #include "camera/camera_path.h"
 #include "render/renderer.h"
-#include "sweep/config.h"
+#include "config/config.h"
 
 namespace lb {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/renderer.h"
-#include "sweep/measure.h"
+#include "metrics/frame_metrics.h"
 #include "terrain/heightfield.h"
 
 namespace lb {

@@ -1,5 +1,5 @@
 // Timing-mode replays, their counter cross-check, and clock-control calibration.
-#include "sweep/timing_passes.h"
+#include "replay/timing_passes.h"
 
 #include <chrono>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "sweep/load_bench.h"
+#include "cli/load_bench.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -14,8 +14,8 @@
 
 #include "error.h"
 #include "schemes/registry.h"
-#include "sweep/config.h"
-#include "sweep/results.h"
+#include "config/config.h"
+#include "results/write.h"
 #include "terrain/terrain_cache.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"

@@ -1,4 +1,4 @@
-#include "results/sha256.h"
+#include "sha256.h"
 
 #include <cstring>
 #include <fstream>

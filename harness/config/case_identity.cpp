@@ -1,7 +1,7 @@
-#include "results/case_identity.h"
+#include "config/case_identity.h"
 
-#include "results/sha256.h"
-#include "sweep/config.h"
+#include "sha256.h"
+#include "config/config.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
 

@@ -1,4 +1,4 @@
-#include "sweep/json_lines.h"
+#include "config/json_lines.h"
 
 #include <cctype>
 #include <cstring>

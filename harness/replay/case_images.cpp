@@ -1,11 +1,11 @@
-#include "sweep/case_images.h"
+#include "replay/case_images.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "metrics/cracks.h"
 #include "render/image_io.h"
-#include "sweep/runner.h"
+#include "replay/run_case.h"
 #include "vk/context.h"
 
 namespace lb {

@@ -1,0 +1,16 @@
+#pragma once
+// The "match" section of a config: the target a matched comparison searches each case's main
+// parameter for (replay/matched.h runs the search).
+#include <string>
+
+namespace lb {
+
+struct MatchSpec {
+  std::string metric;  // "" (off) | "triangles" | "err_mean_px"
+  double value = 0;    // target: mean triangles per frame, or mean error in pixels
+  int frames = 8;      // evaluation frames spread evenly over the path
+  int iterations = 12; // bisection steps
+  bool on() const { return !metric.empty(); }
+};
+
+}  // namespace lb

@@ -1,0 +1,16 @@
+#pragma once
+// The "measure" section of a config: which measurement passes run, and on which frames.
+#include <set>
+#include <string>
+
+namespace lb {
+
+struct MeasureSpec {
+  int every = 0;  // measure every n-th frame (0 = no measurement frames)
+  std::set<std::string> passes = {"histogram", "error", "image", "cracks", "popping", "surplus"};
+  int diffThreshold = 16;  // per-channel difference (0..255) counted by img_frac_over
+  bool on(const std::string& pass) const { return every > 0 && passes.count(pass) > 0; }
+};
+const std::set<std::string>& allMeasurePasses();
+
+}  // namespace lb

@@ -1,0 +1,33 @@
+#pragma once
+// Measurement passes of one frame (docs/design.md, What is measured), run after a case's timing frames so they
+// never perturb the timings: histogram, screen-space error, image error against the ray-cast
+// ground truth, cracks, popping, surplus.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "camera/camera_path.h"
+#include "config/measure_spec.h"
+#include "metrics/frame_metrics.h"
+#include "metrics/image_metrics.h"
+#include "metrics/raycast_cache.h"
+#include "metrics/surplus.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+struct Context;
+struct Heightfield;
+
+FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme, const ParamValues& params,
+                          const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
+                          ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current);
+
+// Error map visualisation: 0 px black .. >= 8 px white (sqrt scale), sky (kSkyRgba) where no terrain.
+RgbaImage errorImage(const std::vector<float>& error, int width, int height);
+
+}  // namespace lb

@@ -1,0 +1,40 @@
+#pragma once
+// Replays one case: loads its terrain and path, runs its timed frames, timing-mode replays,
+// measurement passes and images, in that order, and returns what it measured (results/write.h
+// records it). The timed frames come first, so nothing else perturbs them.
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+#include "metrics/raycast_cache.h"
+#include "render/renderer.h"
+#include "replay/case_progress.h"
+#include "results/write.h"
+
+namespace lb {
+
+struct Context;
+
+// Thrown when a stop was requested (SIGINT/SIGTERM): the running case is dropped, finished ones stay.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+// Async-signal-safe: sets a flag the replay loop checks between frames.
+void requestStop();
+void clearStop();  // a new sweep starts unstopped
+
+// One case on an existing device context (used by tests and the sweep); progress may be null.
+CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
+                   CaseProgress* progress, ReferenceCache& refs);
+
+// Load-time stage costs per terrain label of the cases run since clearStageCosts (run.json
+// costs.terrains).
+void clearStageCosts();
+nlohmann::json stageCostsJson();
+
+RenderMode parseRenderMode(const std::string& name);
+const char* renderModeName(RenderMode m);
+
+}  // namespace lb
