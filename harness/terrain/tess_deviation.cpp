@@ -329,6 +329,7 @@ LevelWork levelWork(const std::vector<dvec2>& tri) {
 struct PatchPattern {
   std::vector<dvec2> vertices;
   std::vector<std::array<uint32_t, 2>> edges;      // vertex indices
+  std::vector<uint32_t> reverse;                   // index of the edge b->a of edge a->b, or itself
   std::vector<std::array<uint32_t, 3>> triangles;  // vertex indices
   std::vector<std::vector<uint32_t>> levelEdges, levelTriangles;
 };
@@ -372,7 +373,12 @@ PatchPattern patchPattern() {
   auto vertexIndex = [&](dvec2 v) {
     return uint32_t(std::lower_bound(pp.vertices.begin(), pp.vertices.end(), v, lessVertex) - pp.vertices.begin());
   };
-  for (const auto& e : allEdges) pp.edges.push_back({vertexIndex(e[0]), vertexIndex(e[1])});
+  for (const auto& e : allEdges) {
+    pp.edges.push_back({vertexIndex(e[0]), vertexIndex(e[1])});
+    auto r = std::lower_bound(allEdges.begin(), allEdges.end(), std::array<dvec2, 2>{e[1], e[0]}, lessPoints<2>);
+    const bool found = r != allEdges.end() && r->at(0) == e[1] && r->at(1) == e[0];
+    pp.reverse.push_back(uint32_t(found ? r - allEdges.begin() : &e - allEdges.data()));
+  }
   for (const auto& tr : allTriangles) pp.triangles.push_back({vertexIndex(tr[0]), vertexIndex(tr[1]), vertexIndex(tr[2])});
   return pp;
 }
@@ -457,9 +463,10 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
                                                                             float* out) mutable {
       pv.place(hf, pp, origin, sx, sz);
       bounds.build(hf, origin.x, origin.y, origin.x + sx, origin.y + sz);
+      // An edge and its reverse have one bound: the slack covers either direction's rounding.
       for (size_t i = 0; i < pp.edges.size(); ++i) {
         const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
-        edgeBound[i] = bounds.edge(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
+        edgeBound[i] = pp.reverse[i] < i ? edgeBound[pp.reverse[i]] : bounds.edge(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
         edgeDev[i] = edgeAlong[i] = NAN;
       }
       for (size_t i = 0; i < pp.triangles.size(); ++i) {
@@ -472,7 +479,7 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
         if (!(edgeBound[i] > worst)) return false;
         if (std::isnan(edgeAlong[i])) {
           const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
-          edgeAlong[i] = bounds.edgeAlong(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
+          edgeAlong[i] = edgeAlong[pp.reverse[i]] = bounds.edgeAlong(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
         }
         return edgeAlong[i] > worst;
       };
