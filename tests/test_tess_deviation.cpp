@@ -129,8 +129,9 @@ TEST(TessDeviationFast, BoundsHoldOverRandomTriangles) {
   // Each bound must be >= the exact value (what triangleDeviation computes from the same
   // heights): random triangles of every size, on rough and on smooth steep ground.
   for (const Heightfield& hf : {field(65, 65, 100.0f, 40.0f, 8), procedural(129, false)}) {
+    for (int fine : {1, 2, 4}) {
     DeviationBounds bounds;
-    bounds.build(hf, 0, 0, hf.width - 1, hf.height - 1);
+    bounds.build(hf, 0, 0, hf.width - 1, hf.height - 1, fine);
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> u(0, hf.width - 1);
     for (int t = 0; t < 400; ++t) {
@@ -148,8 +149,9 @@ TEST(TessDeviationFast, BoundsHoldOverRandomTriangles) {
                                    bounds.triangle(a, b, c, ha, hb, hc)});
       const double along = std::max({bounds.edgeAlong(a, b, ha, hb), bounds.edgeAlong(b, c, hb, hc),
                                      bounds.edgeAlong(c, a, hc, ha), bounds.triangle(a, b, c, ha, hb, hc)});
-      EXPECT_GE(box, exact) << "triangle " << t;
-      EXPECT_GE(along, exact) << "triangle " << t;
+      EXPECT_GE(box, exact) << "fine " << fine << " triangle " << t;
+      EXPECT_GE(along, exact) << "fine " << fine << " triangle " << t;
+    }
     }
   }
 }

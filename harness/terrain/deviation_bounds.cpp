@@ -29,11 +29,16 @@ void blockRange(double lo, double hi, int size, int blocks, int& first, int& las
 
 }  // namespace
 
-void DeviationBounds::build(const Heightfield& hf, double x0, double z0, double x1, double z1) {
+int DeviationBounds::fineFor(double sx, double sz) {
+  const double cell = std::min(sx, sz) / 64;
+  return cell >= 4 ? 4 : cell >= 2 ? 2 : 1;
+}
+
+void DeviationBounds::build(const Heightfield& hf, double x0, double z0, double x1, double z1, int fine) {
   maxAbs_ = 0;
   for (int m = 0; m < kLevels; ++m) {
     Level& l = levels_[m];
-    l.size = 4 << (2 * m);
+    l.size = fine << (2 * m);
     l.blocksX = std::max(1, (hf.width - 1 + l.size - 1) / l.size);
     l.blocksZ = std::max(1, (hf.height - 1 + l.size - 1) / l.size);
     int bx1, bz1;
@@ -110,7 +115,9 @@ double DeviationBounds::overBlocks(int level, double zlo, double zhi, Span&& spa
 }
 
 // The finest block size that covers a box of this extent with at most 5 x 5 blocks.
-int DeviationBounds::levelFor(double extent) { return extent <= 16 ? 0 : extent <= 64 ? 1 : 2; }
+int DeviationBounds::levelFor(double extent) const {
+  return extent <= levels_[1].size ? 0 : extent <= levels_[2].size ? 1 : 2;
+}
 
 double DeviationBounds::edge(glm::dvec2 a, glm::dvec2 b, double ha, double hb) const {
   const glm::dvec2 d = b - a;

@@ -3,8 +3,9 @@
 // so that the table can skip every edge and triangle whose bound cannot beat its level's running
 // maximum: the maximum is exact, so the table is the same bits as computing everything.
 //
-// The heightfield is cut into blocks of n x n cells (n = 4, 16, 64: an item uses the finest size
-// that covers it with a few blocks, so a bound costs a few blocks). Each block keeps a plane
+// The heightfield is cut into blocks of n x n cells (n = f, 4f, 16f: an item uses the finest size
+// that covers it with a few blocks, so a bound costs a few blocks; f, 1 to 4, follows the patch
+// size so that the finest blocks are no larger than the finest level's cells). Each block keeps a plane
 // Q (through the block's first sample, with the slope of its corners) and the range [lo, hi] of
 // h - Q over its samples. The bilinear surface reproduces planes, so B - Q over the whole block is
 // the bilinear interpolation of those residuals and stays in [lo, hi]. For any plane P (a
@@ -20,8 +21,11 @@ struct Heightfield;
 
 class DeviationBounds {
  public:
-  // Blocks covering texel x in [x0, x1], z in [z0, z1] (one patch), clamped to the heightfield.
-  void build(const Heightfield& hf, double x0, double z0, double x1, double z1);
+  // Blocks covering texel x in [x0, x1], z in [z0, z1] (one patch), clamped to the heightfield;
+  // the finest blocks have fine (1, 2 or 4) cells a side.
+  void build(const Heightfield& hf, double x0, double z0, double x1, double z1, int fine);
+  // The finest block size for patches of sx x sz texels: their level-64 cells, at most 4.
+  static int fineFor(double sx, double sz);
 
   // >= the value edgeDeviation / interiorDeviation compute (in floating point) for the segment
   // a->b with chord heights ha, hb, or for the samples inside triangle abc under the plane
@@ -46,7 +50,7 @@ class DeviationBounds {
   template <bool kChord, class Span>
   double overBlocks(int level, double zlo, double zhi, Span&& span, glm::dvec2 p, double h0, double gx, double gz,
                     glm::dvec2 d, double dh) const;
-  static int levelFor(double extent);
+  int levelFor(double extent) const;
 
   struct Level {
     int size = 0;                         // cells per block side

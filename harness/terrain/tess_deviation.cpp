@@ -462,7 +462,7 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
     return [&, edgeBound, triangleBound, edgeDev, triangleDev, edgeAlong, pv, bounds](dvec2 origin, double sx, double sz,
                                                                             float* out) mutable {
       pv.place(hf, pp, origin, sx, sz);
-      bounds.build(hf, origin.x, origin.y, origin.x + sx, origin.y + sz);
+      bounds.build(hf, origin.x, origin.y, origin.x + sx, origin.y + sz, DeviationBounds::fineFor(sx, sz));
       // An edge and its reverse have one bound: the slack covers either direction's rounding.
       for (size_t i = 0; i < pp.edges.size(); ++i) {
         const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
