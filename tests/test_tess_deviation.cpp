@@ -120,6 +120,15 @@ TEST(TessDeviationFast, MatchesTheOracleOnTinyTerrains) {
       for (int grid : {1, 3}) expectSameTable(field(w, h, 10.0f, 5.0f, unsigned(w * 10 + h)), grid, std::to_string(w) + "x" + std::to_string(h));
 }
 
+TEST(TessDeviationFast, MatchesTheOracleWhenHeightsAreNotFinite) {
+  // The loaders refuse such heights; if one got through, the table still must not depend on
+  // which items were skipped.
+  Heightfield hf = field(33, 33, 0.0f, 10.0f, 11);
+  hf.h[size_t(5 * 33 + 7)] = NAN;
+  hf.h[size_t(20 * 33 + 30)] = INFINITY;
+  for (int grid : {1, 3, 4}) expectSameTable(hf, grid, "NaN and infinity");
+}
+
 TEST(TessDeviationFast, MatchesTheOracleOnTheRealDem) {
   const Heightfield dem = makeHeightfield(lbtest::demCrop());
   for (int grid : {8, 5}) expectSameTable(dem, grid, "N44W072 crop");

@@ -36,6 +36,7 @@ int DeviationBounds::fineFor(double sx, double sz) {
 
 void DeviationBounds::build(const Heightfield& hf, double x0, double z0, double x1, double z1, int fine) {
   maxAbs_ = 0;
+  double poison = 0;  // NaN once a sample is NaN or infinite (v * 0)
   for (int m = 0; m < kLevels; ++m) {
     Level& l = levels_[m];
     l.size = fine << (2 * m);
@@ -69,6 +70,7 @@ void DeviationBounds::build(const Heightfield& hf, double x0, double z0, double 
             lo = std::min(lo, r);
             hi = std::max(hi, r);
             big = std::max(big, std::abs(v));
+            poison += v * 0.0;
           }
         }
         b.lo = lo;
@@ -76,11 +78,14 @@ void DeviationBounds::build(const Heightfield& hf, double x0, double z0, double 
         maxAbs_ = std::max(maxAbs_, big);
       }
   }
+  // Heights that are not finite (the loaders refuse them) leave min / max meaningless: no bounds.
+  finite_ = poison == 0.0;
 }
 
 template <bool kChord, class Span>
 double DeviationBounds::overBlocks(int level, double zlo, double zhi, Span&& span, glm::dvec2 p, double h0, double gx,
                                    double gz, glm::dvec2 d, double dh) const {
+  if (!finite_) return INFINITY;
   const Level& l = levels_[level];
   int iz0, iz1;
   blockRange(zlo, zhi, l.size, l.blocksZ, iz0, iz1);

@@ -61,6 +61,7 @@ class DeviationBounds {
   static constexpr int kLevels = 3;
   Level levels_[kLevels];
   double maxAbs_ = 0;  // largest |h| of the blocks (scale of the slack)
+  bool finite_ = true;
 };
 
 }  // namespace lb

@@ -397,8 +397,9 @@ struct PatchVertices {
   }
 };
 
-// Runs patch(p, origin, sx, sz, out) for every patch on all terrain threads; out points at the
-// patch's kErrboundLevels entries. makeWorker() gives each thread its own patch function.
+// Runs patch(origin, sx, sz, out) for every patch on all terrain threads: origin is the patch's
+// corner in texels, out its kErrboundLevels entries. makeWorker() gives each thread its own
+// patch function (with its own scratch).
 template <class MakeWorker>
 DeviationTable forEachPatch(const Heightfield& hf, int grid, MakeWorker&& makeWorker) {
   DeviationTable t;
@@ -475,13 +476,14 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
         triangleDev[i] = NAN;
       }
       // A long edge's box bound is loose: its tighter bound along the edge first.
+      // Comparisons read "cannot beat" as bound <= worst, so that a NaN bound is computed.
       auto edgeBeats = [&](uint32_t i, double worst) {
-        if (!(edgeBound[i] > worst)) return false;
+        if (edgeBound[i] <= worst) return false;
         if (std::isnan(edgeAlong[i])) {
           const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
           edgeAlong[i] = edgeAlong[pp.reverse[i]] = bounds.edgeAlong(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
         }
-        return edgeAlong[i] > worst;
+        return !(edgeAlong[i] <= worst);
       };
       auto exactEdge = [&](uint32_t i) {
         if (std::isnan(edgeDev[i])) {
@@ -511,22 +513,12 @@ DeviationTable tessDeviation(const Heightfield& hf, int grid) {
           if (edgeBound[i] > top) top = edgeBound[i], topIsEdge = true, topIndex = i;
         for (uint32_t i : ts)
           if (triangleBound[i] > top) top = triangleBound[i], topIsEdge = false, topIndex = i;
-        if (top >= 0) worst = topIsEdge ? exactEdge(topIndex) : exactTriangle(topIndex);
+        if (top >= 0) worst = std::max(worst, topIsEdge ? exactEdge(topIndex) : exactTriangle(topIndex));
         for (uint32_t i : es)
           if (edgeBeats(i, worst)) worst = std::max(worst, exactEdge(i));
         for (uint32_t i : ts)
-          if (triangleBound[i] > worst) worst = std::max(worst, exactTriangle(i));
+          if (!(triangleBound[i] <= worst)) worst = std::max(worst, exactTriangle(i));
         out[k] = roundedUp(worst);
-#ifdef EB_STATS
-        {
-          static long st[7][6];
-          st[k][0] += long(es.size()); st[k][2] += long(ts.size());
-          for (uint32_t i : es) { st[k][1] += !std::isnan(edgeDev[i]); st[k][4] += edgeAlong[i] > worst; }
-          for (uint32_t i : ts) { st[k][3] += !std::isnan(triangleDev[i]); st[k][5] += triangleBound[i] > worst; }
-          static int calls = 0;
-          if (++calls == 7 * 64) for (int q = 0; q < 7; ++q) fprintf(stderr, "k %d edges %ld exact %ld needed %ld | tris %ld exact %ld needed %ld\n", q, st[q][0], st[q][1], st[q][4], st[q][2], st[q][3], st[q][5]);
-        }
-#endif
       }
     };
   });
