@@ -41,9 +41,10 @@ Heightfield procedural(int size, bool detail, float heightScale = 1500) {
   return makeHeightfield(spec);
 }
 
-// The fast table and the oracle's, compared bit for bit (floats, not values: -0 and NaN would show).
+// The bounded table (at every patch size, not only where tessDeviation picks it) and the
+// oracle's, compared bit for bit (floats, not values: -0 and NaN would show).
 void expectSameTable(const Heightfield& hf, int grid, const std::string& what) {
-  const DeviationTable fast = tessDeviation(hf, grid), oracle = tessDeviationReference(hf, grid);
+  const DeviationTable fast = tessDeviationBounded(hf, grid), oracle = tessDeviationReference(hf, grid);
   ASSERT_EQ(fast.grid, grid) << what;
   ASSERT_EQ(fast.dev.size(), oracle.dev.size()) << what;
   for (size_t i = 0; i < fast.dev.size(); ++i)
@@ -72,6 +73,16 @@ TEST(TessDeviationFast, MatchesTheOracleOnProceduralTerrains) {
   for (int grid : {1, 4, 16}) expectSameTable(smooth, grid, "smooth 257");
 }
 
+TEST(TessDeviationFast, PicksTheBoundsFromPatchesOf32Texels) {
+  // Either choice gives the oracle's bits; what is checked here is that both sides of the
+  // threshold run and agree.
+  const Heightfield hf = procedural(257, true);
+  for (int grid : {8, 9}) {  // 32 and 28.4 texels a side
+    const DeviationTable picked = tessDeviation(hf, grid), oracle = tessDeviationReference(hf, grid);
+    EXPECT_EQ(std::memcmp(picked.dev.data(), oracle.dev.data(), picked.dev.size() * sizeof(float)), 0) << grid;
+  }
+}
+
 TEST(TessDeviationFast, MatchesTheOracleOnFlatAndConstantGround) {
   TerrainSpec spec;
   spec.size = 129;
@@ -79,7 +90,7 @@ TEST(TessDeviationFast, MatchesTheOracleOnFlatAndConstantGround) {
   for (int grid : {1, 4, 16}) expectSameTable(flat, grid, "flat");
   const Heightfield level = field(65, 65, 1000.0f, 0.0f, 1);  // constant, far from 0
   for (int grid : {1, 4}) expectSameTable(level, grid, "constant 1000");
-  const DeviationTable t = tessDeviation(flat, 4);
+  const DeviationTable t = tessDeviationBounded(flat, 4);
   for (float d : t.dev) EXPECT_EQ(d, std::nextafter(0.0f, 1.0f));  // exactly 0, rounded up
 }
 

@@ -452,6 +452,14 @@ DeviationTable tessDeviationReference(const Heightfield& hf, int grid) {
 }
 
 DeviationTable tessDeviation(const Heightfield& hf, int grid) {
+  // Every patch has the same ~50,000 edges and triangles whatever its size; below 32 texels a
+  // side the exact ones are about as cheap as their bounds (measured: equal at 32, the bounds
+  // 1.8x slower at 16, 1.5x faster at 46), so small patches take the straightforward table.
+  const double side = std::min(double(hf.width - 1), double(hf.height - 1)) / grid;
+  return side >= 32 ? tessDeviationBounded(hf, grid) : tessDeviationReference(hf, grid);
+}
+
+DeviationTable tessDeviationBounded(const Heightfield& hf, int grid) {
   if (hf.width < 2 || hf.height < 2) return tessDeviationReference(hf, grid);  // no cell to bound
   const PatchPattern pp = patchPattern();
   return forEachPatch(hf, grid, [&] {
