@@ -8,8 +8,8 @@
 namespace lb {
 namespace {
 
-// Relative slack of a bound. Both the exact code and the bound round: coordinates up to 2^14
-// texels carry errors near 2^-38 texel, times slopes and cross terms of a few times the largest
+// Relative slack of a bound. Both the exact code and the bound round: coordinates up to 2^16
+// texels carry errors near 2^-36 texel, times slopes and cross terms of a few times the largest
 // height; a plane's terms carry a few ulps of their own size. 1e-9 of those magnitudes is
 // thousands of times that and still far below any deviation worth a level.
 constexpr double kSlack = 1e-9;
@@ -92,6 +92,7 @@ double DeviationBounds::overBlocks(int level, double zlo, double zhi, Span&& spa
   if (iz0 < l.bz0 || iz1 >= l.bz0 + l.nz) return INFINITY;  // outside what was built: no bound
   const double invDd = 1.0 / (d.x * d.x + d.y * d.y);
   double worst = 0, scale = std::abs(h0);
+  double sum = 0;  // not finite once a term is (std::max would drop a NaN): then no bound
   for (int jz = iz0; jz <= iz1; ++jz) {
     double xlo, xhi;
     span(std::max(zlo, double(jz * l.size)), std::min(zhi, double((jz + 1) * l.size)), xlo, xhi);
@@ -114,8 +115,10 @@ double DeviationBounds::overBlocks(int level, double zlo, double zhi, Span&& spa
       const double lower = b.lo + std::min(ex, 0.0) + std::min(ez, 0.0) - k;
       worst = std::max({worst, upper, -lower});
       scale = std::max(scale, std::abs(tx) + std::abs(tz) + std::abs(ex) + std::abs(ez));
+      sum += upper + lower + scale;
     }
   }
+  if (!std::isfinite(sum)) return INFINITY;
   return worst + kSlack * (worst + scale + maxAbs_);
 }
 

@@ -5,8 +5,8 @@
 //
 // The heightfield is cut into blocks of n x n cells (n = f, 4f, 16f: an item uses the finest size
 // that covers it with a few blocks, so a bound costs a few blocks; f, 1 to 4, follows the patch
-// size so that the finest blocks are no larger than the finest level's cells). Each block keeps a plane
-// Q (through the block's first sample, with the slope of its corners) and the range [lo, hi] of
+// size so that the finest blocks are no larger than the finest level's cells). Each block keeps
+// a plane Q (through the block's first sample, with the slope of its corners) and the range [lo, hi] of
 // h - Q over its samples. The bilinear surface reproduces planes, so B - Q over the whole block is
 // the bilinear interpolation of those residuals and stays in [lo, hi]. For any plane P (a
 // triangle's, or one through an edge's chord), B - P = (B - Q) + (Q - P) on the block, and Q - P
@@ -38,7 +38,7 @@ class DeviationBounds {
  private:
   struct Block {
     double x, z;    // first sample (the plane's origin)
-    double wx, wz;  // extent in texels (kBoundBlock, less at the last row / column)
+    double wx, wz;  // extent in texels (the level's size, less at the last row / column)
     double qx, qz;  // the plane's slope
     double lo, hi;  // range of h - plane over the block's samples
   };
