@@ -57,7 +57,8 @@ void expectSameTable(const Heightfield& hf, int grid, const std::string& what) {
 
 // The bilinear height the table uses at texel coordinates p (cell clamped to the border).
 double bilinear(const Heightfield& hf, glm::dvec2 p) {
-  const int x = std::clamp(int(std::floor(p.x)), 0, hf.width - 2), z = std::clamp(int(std::floor(p.y)), 0, hf.height - 2);
+  const int x = std::clamp(int(std::floor(p.x)), 0, hf.width - 2),
+            z = std::clamp(int(std::floor(p.y)), 0, hf.height - 2);
   const double fx = p.x - x, fz = p.y - z;
   const double h00 = hf.at(x, z), h10 = hf.at(x + 1, z), h01 = hf.at(x, z + 1), h11 = hf.at(x + 1, z + 1);
   return h00 + (h10 - h00) * fx + (h01 - h00) * fz + (h00 - h10 - h01 + h11) * fx * fz;
@@ -106,7 +107,8 @@ TEST(TessDeviationFast, MatchesTheOracleOnSpikes) {
   Heightfield ramp = field(129, 129, 0.0f, 0.01f, 2);
   for (int z = 0; z < 129; ++z)
     for (int x = 0; x < 129; ++x) ramp.h[size_t(z * 129 + x)] += 0.3f * x - 0.2f * z;
-  const int planted[][3] = {{64, 64, 1}, {32, 0, -1}, {128, 77, 1}, {5, 128, 1}, {33, 61, -1}, {128, 128, 1}, {0, 0, -1}};
+  const int planted[][3] = {{64, 64, 1},  {32, 0, -1},   {128, 77, 1}, {5, 128, 1},
+                            {33, 61, -1}, {128, 128, 1}, {0, 0, -1}};
   for (const auto& s : planted) ramp.h[size_t(s[1] * 129 + s[0])] += 5000.0f * s[2];
   for (int grid : {1, 2, 4, 8}) expectSameTable(ramp, grid, "planted spikes");
 }
@@ -128,7 +130,9 @@ TEST(TessDeviationFast, MatchesTheOracleOnTinyTerrains) {
   // the fast table hands it to the oracle).
   for (int w : {1, 2, 3, 5})
     for (int h : {2, 4})
-      for (int grid : {1, 3}) expectSameTable(field(w, h, 10.0f, 5.0f, unsigned(w * 10 + h)), grid, std::to_string(w) + "x" + std::to_string(h));
+      for (int grid : {1, 3})
+        expectSameTable(field(w, h, 10.0f, 5.0f, unsigned(w * 10 + h)), grid,
+                        std::to_string(w) + "x" + std::to_string(h));
 }
 
 TEST(TessDeviationFast, MatchesTheOracleWhenHeightsAreNotFinite) {
@@ -150,28 +154,29 @@ TEST(TessDeviationFast, BoundsHoldOverRandomTriangles) {
   // heights): random triangles of every size, on rough and on smooth steep ground.
   for (const Heightfield& hf : {field(65, 65, 100.0f, 40.0f, 8), procedural(129, false)}) {
     for (int fine : {1, 2, 4}) {
-    DeviationBounds bounds;
-    bounds.build(hf, 0, 0, hf.width - 1, hf.height - 1, fine);
-    std::mt19937 rng(9);
-    std::uniform_real_distribution<double> u(0, hf.width - 1);
-    for (int t = 0; t < 400; ++t) {
-      const double size = t < 100 ? 4 : t < 200 ? 16 : hf.width - 1;
-      std::uniform_real_distribution<double> near(-size / 2, size / 2);
-      const glm::dvec2 a(u(rng), u(rng));
-      auto around = [&] {
-        return glm::dvec2(std::clamp(a.x + near(rng), 0.0, hf.width - 1.0), std::clamp(a.y + near(rng), 0.0, hf.height - 1.0));
-      };
-      glm::dvec2 b = around(), c = around();
-      if (t % 7 == 0) b.y = a.y;  // axis-parallel edges too
-      const double ha = bilinear(hf, a), hb = bilinear(hf, b), hc = bilinear(hf, c);
-      const double exact = triangleDeviation(hf, a, b, c);
-      const double box = std::max({bounds.edge(a, b, ha, hb), bounds.edge(b, c, hb, hc), bounds.edge(c, a, hc, ha),
-                                   bounds.triangle(a, b, c, ha, hb, hc)});
-      const double along = std::max({bounds.edgeAlong(a, b, ha, hb), bounds.edgeAlong(b, c, hb, hc),
-                                     bounds.edgeAlong(c, a, hc, ha), bounds.triangle(a, b, c, ha, hb, hc)});
-      EXPECT_GE(box, exact) << "fine " << fine << " triangle " << t;
-      EXPECT_GE(along, exact) << "fine " << fine << " triangle " << t;
-    }
+      DeviationBounds bounds;
+      bounds.build(hf, 0, 0, hf.width - 1, hf.height - 1, fine);
+      std::mt19937 rng(9);
+      std::uniform_real_distribution<double> u(0, hf.width - 1);
+      for (int t = 0; t < 400; ++t) {
+        const double size = t < 100 ? 4 : t < 200 ? 16 : hf.width - 1;
+        std::uniform_real_distribution<double> near(-size / 2, size / 2);
+        const glm::dvec2 a(u(rng), u(rng));
+        auto around = [&] {
+          return glm::dvec2(std::clamp(a.x + near(rng), 0.0, hf.width - 1.0),
+                            std::clamp(a.y + near(rng), 0.0, hf.height - 1.0));
+        };
+        glm::dvec2 b = around(), c = around();
+        if (t % 7 == 0) b.y = a.y;  // axis-parallel edges too
+        const double ha = bilinear(hf, a), hb = bilinear(hf, b), hc = bilinear(hf, c);
+        const double exact = triangleDeviation(hf, a, b, c);
+        const double box = std::max({bounds.edge(a, b, ha, hb), bounds.edge(b, c, hb, hc), bounds.edge(c, a, hc, ha),
+                                     bounds.triangle(a, b, c, ha, hb, hc)});
+        const double along = std::max({bounds.edgeAlong(a, b, ha, hb), bounds.edgeAlong(b, c, hb, hc),
+                                       bounds.edgeAlong(c, a, hc, ha), bounds.triangle(a, b, c, ha, hb, hc)});
+        EXPECT_GE(box, exact) << "fine " << fine << " triangle " << t;
+        EXPECT_GE(along, exact) << "fine " << fine << " triangle " << t;
+      }
     }
   }
 }

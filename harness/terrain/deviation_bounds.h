@@ -11,9 +11,8 @@
 // the bilinear interpolation of those residuals and stays in [lo, hi]. For any plane P (a
 // triangle's, or one through an edge's chord), B - P = (B - Q) + (Q - P) on the block, and Q - P
 // is linear, largest at a block corner: a few multiplications per block bound |B - P| there.
-#include <vector>
-
 #include <glm/vec2.hpp>
+#include <vector>
 
 namespace lb {
 
@@ -53,9 +52,9 @@ class DeviationBounds {
   int levelFor(double extent) const;
 
   struct Level {
-    int size = 0;                         // cells per block side
+    int size = 0;                          // cells per block side
     int bx0 = 0, bz0 = 0, nx = 0, nz = 0;  // global index of the first block built, blocks built per side
-    int blocksX = 0, blocksZ = 0;         // blocks of the whole heightfield per side
+    int blocksX = 0, blocksZ = 0;          // blocks of the whole heightfield per side
     std::vector<Block> blocks;
   };
   static constexpr int kLevels = 3;

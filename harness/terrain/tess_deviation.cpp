@@ -353,7 +353,8 @@ PatchPattern patchPattern() {
   pp.levelEdges.resize(perLevel.size());
   for (size_t k = 0; k < perLevel.size(); ++k)
     for (const auto& e : perLevel[k].edges)
-      pp.levelEdges[k].push_back(uint32_t(std::lower_bound(allEdges.begin(), allEdges.end(), e, lessPoints<2>) - allEdges.begin()));
+      pp.levelEdges[k].push_back(
+          uint32_t(std::lower_bound(allEdges.begin(), allEdges.end(), e, lessPoints<2>) - allEdges.begin()));
   // The same for triangles (level 0's fans and level 1's strips share some).
   std::vector<std::array<dvec2, 3>> allTriangles;
   for (const LevelWork& w : perLevel) allTriangles.insert(allTriangles.end(), w.triangles.begin(), w.triangles.end());
@@ -361,8 +362,8 @@ PatchPattern patchPattern() {
   pp.levelTriangles.resize(perLevel.size());
   for (size_t k = 0; k < perLevel.size(); ++k)
     for (const auto& tr : perLevel[k].triangles)
-      pp.levelTriangles[k].push_back(
-          uint32_t(std::lower_bound(allTriangles.begin(), allTriangles.end(), tr, lessPoints<3>) - allTriangles.begin()));
+      pp.levelTriangles[k].push_back(uint32_t(
+          std::lower_bound(allTriangles.begin(), allTriangles.end(), tr, lessPoints<3>) - allTriangles.begin()));
   // Edges and triangles share their vertices: each patch computes a vertex's texel position
   // and height once (the same expressions on the same (u, v), so the same bits as per use).
   for (const auto& e : allEdges) pp.vertices.insert(pp.vertices.end(), e.begin(), e.end());
@@ -379,7 +380,8 @@ PatchPattern patchPattern() {
     const bool found = r != allEdges.end() && r->at(0) == e[1] && r->at(1) == e[0];
     pp.reverse.push_back(uint32_t(found ? r - allEdges.begin() : &e - allEdges.data()));
   }
-  for (const auto& tr : allTriangles) pp.triangles.push_back({vertexIndex(tr[0]), vertexIndex(tr[1]), vertexIndex(tr[2])});
+  for (const auto& tr : allTriangles)
+    pp.triangles.push_back({vertexIndex(tr[0]), vertexIndex(tr[1]), vertexIndex(tr[2])});
   return pp;
 }
 
@@ -421,7 +423,9 @@ DeviationTable forEachPatch(const Heightfield& hf, int grid, MakeWorker&& makeWo
 }
 
 // Rounded up so the float the shader reads never undercuts the double bound.
-float roundedUp(double worst) { return std::nextafter(float(worst), INFINITY); }
+float roundedUp(double worst) {
+  return std::nextafter(float(worst), INFINITY);
+}
 
 }  // namespace
 
@@ -468,19 +472,21 @@ DeviationTable tessDeviationBounded(const Heightfield& hf, int grid) {
     std::vector<double> edgeDev(pp.edges.size()), triangleDev(pp.triangles.size()), edgeAlong(pp.edges.size());
     PatchVertices pv;
     DeviationBounds bounds;
-    return [&, edgeBound, triangleBound, edgeDev, triangleDev, edgeAlong, pv, bounds](dvec2 origin, double sx, double sz,
-                                                                            float* out) mutable {
+    return [&, edgeBound, triangleBound, edgeDev, triangleDev, edgeAlong, pv, bounds](dvec2 origin, double sx,
+                                                                                      double sz, float* out) mutable {
       pv.place(hf, pp, origin, sx, sz);
       bounds.build(hf, origin.x, origin.y, origin.x + sx, origin.y + sz, DeviationBounds::fineFor(sx, sz));
       // An edge and its reverse have one bound: the slack covers either direction's rounding.
       for (size_t i = 0; i < pp.edges.size(); ++i) {
         const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
-        edgeBound[i] = pp.reverse[i] < i ? edgeBound[pp.reverse[i]] : bounds.edge(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
+        edgeBound[i] = pp.reverse[i] < i ? edgeBound[pp.reverse[i]]
+                                         : bounds.edge(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
         edgeDev[i] = edgeAlong[i] = NAN;
       }
       for (size_t i = 0; i < pp.triangles.size(); ++i) {
         const uint32_t ia = pp.triangles[i][0], ib = pp.triangles[i][1], ic = pp.triangles[i][2];
-        triangleBound[i] = bounds.triangle(pv.tex[ia], pv.tex[ib], pv.tex[ic], pv.height[ia], pv.height[ib], pv.height[ic]);
+        triangleBound[i] =
+            bounds.triangle(pv.tex[ia], pv.tex[ib], pv.tex[ic], pv.height[ia], pv.height[ib], pv.height[ic]);
         triangleDev[i] = NAN;
       }
       // A long edge's box bound is loose: its tighter bound along the edge first.
@@ -489,7 +495,8 @@ DeviationTable tessDeviationBounded(const Heightfield& hf, int grid) {
         if (edgeBound[i] <= worst) return false;
         if (std::isnan(edgeAlong[i])) {
           const uint32_t ia = pp.edges[i][0], ib = pp.edges[i][1];
-          edgeAlong[i] = edgeAlong[pp.reverse[i]] = bounds.edgeAlong(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
+          edgeAlong[i] = edgeAlong[pp.reverse[i]] =
+              bounds.edgeAlong(pv.tex[ia], pv.tex[ib], pv.height[ia], pv.height[ib]);
         }
         return !(edgeAlong[i] <= worst);
       };
