@@ -22,7 +22,15 @@ struct DeviationTable {
 // Contract: grid >= 1, heightfield at least 2 x 2. Deterministic; runs on all hardware threads.
 // dev(p, k) bounds |tessellated - true height| over patch p whatever its four edge levels are,
 // as long as each is a power of two >= 2^k (errbound's edges are the max of two patches' levels).
+// Patches of 32 texels or more skip every edge and triangle whose cheap upper bound
+// (terrain/deviation_bounds.h) cannot raise its level's maximum (tessDeviationBounded); smaller
+// ones, where that does not pay, take tessDeviationReference. The same bits either way.
 DeviationTable tessDeviation(const Heightfield& hf, int grid);
+DeviationTable tessDeviationBounded(const Heightfield& hf, int grid);  // the bounds at any patch size
+
+// The same table computed the straightforward way, every edge and triangle of every level: the
+// oracle tessDeviation is tested against, bit for bit.
+DeviationTable tessDeviationReference(const Heightfield& hf, int grid);
 
 // Largest |plane through the three vertices - bilinear heightfield| over the triangle, vertices in
 // heightfield texel coordinates (x along width, z along height). Exact up to rounding: the

@@ -6,6 +6,7 @@
 #include "terrain/density_map.h"
 #include "terrain/heightfield.h"
 #include "terrain/plane_fit.h"
+#include "terrain/tess_deviation.h"
 
 namespace lb {
 
@@ -38,6 +39,19 @@ void benchPlaneFit(benchmark::State& state, int size, bool book) {
   Heightfield hf = terrain(size);
   for (auto _ : state) benchmark::DoNotOptimize(fitPlanes(hf, book ? PlaneFit::Book : PlaneFit::LeastSquares));
   state.SetItemsProcessed(state.iterations() * int64_t(size) * size);
+}
+
+void benchTessDeviation(benchmark::State& state, int size, bool reference) {
+  TerrainSpec spec;
+  spec.size = size;
+  spec.seed = 1;
+  spec.detailToSpacing = true;
+  spec.extent = float((size - 1) / 1024 * 1000);
+  spec.heightScale = 1500;
+  Heightfield hf = makeHeightfield(spec);
+  const int grid = (size - 1) / 256;
+  for (auto _ : state) benchmark::DoNotOptimize(reference ? tessDeviationReference(hf, grid) : tessDeviation(hf, grid));
+  state.SetItemsProcessed(state.iterations() * int64_t(grid) * grid);  // patches
 }
 
 void benchSamplePose(benchmark::State& state, const std::string& file) {

@@ -23,6 +23,8 @@ std::vector<Entry> table() {
       {"BM_DensityMap/513", [](auto& s) { benchDensityMap(s, 513); }},
       {"BM_PlaneFit/book/513", [](auto& s) { benchPlaneFit(s, 513, true); }},
       {"BM_PlaneFit/lsq/513", [](auto& s) { benchPlaneFit(s, 513, false); }},
+      {"BM_TessDeviation/1025", [](auto& s) { benchTessDeviation(s, 1025, false); }},
+      {"BM_TessDeviationReference/1025", [](auto& s) { benchTessDeviation(s, 1025, true); }},
       {"BM_SamplePose/flyover", [paths](auto& s) { benchSamplePose(s, paths + "flyover.csv"); }},
       {"BM_SamplePose/lowalt", [paths](auto& s) { benchSamplePose(s, paths + "lowalt.csv"); }},
       {"BM_StatsSummarize/300", [](auto& s) { benchSummarize(s, 300); }},
