@@ -1,6 +1,6 @@
 // AMD "Detail Tessellation 11" (Thibieroz), "Density-based Tessellation", and Rapp 2011 (bachelor
 // thesis), 5.2.3 "Density Map Creation": a density map from the heightfield's second-order height
-// variation is built at load time (harness/terrain/density_map.cpp); per edge, the maximum density
+// variation is built at load time (schemes/preprocess/density_map.cpp); per edge, the maximum density
 // along the edge multiplies a screen-space factor. The screen-space term is NVIDIA's projected edge
 // sphere (sphere scheme); fractional_even as in that scheme, so the two differ only by the density.
 // Shader: shaders/density.tesc.
@@ -10,7 +10,7 @@
 // pixels, so scaling extent, heights and camera together changes nothing (tests/test_scale.cpp).
 #include "render/scheme.h"
 #include "shaders/density_params.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 #include "terrain/heightfield.h"
 
 namespace lb {

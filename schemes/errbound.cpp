@@ -2,7 +2,7 @@
 // error, projected to the screen, refine until under a pixel budget) applied to hardware
 // tessellation: a guaranteed maximum screen-space error with as few triangles as it can manage.
 //
-// Load time (CPU, harness/terrain/tess_deviation.cpp): per patch and per level 2^k, k = 0..6, the
+// Load time (CPU, schemes/preprocess/tess_deviation.cpp): per patch and per level 2^k, k = 0..6, the
 // largest vertical distance dev(p, k) between the triangles the tessellator draws and the true
 // bilinear heightfield, anywhere in the patch. The triangles are the reference tessellator's
 // (integer partitioning): the transition strips next to finer edges for every power-of-two edge
@@ -47,7 +47,7 @@
 #include "shaders/errbound_params.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 namespace lb {
 namespace {

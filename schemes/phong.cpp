@@ -2,7 +2,7 @@
 // after Boubekeur & Alexa 2008. Triangle patches (two per grid quad); the control shader culls
 // triangles outside the frustum or facing away (each with a tolerance), sets edge factors from the
 // edge's length on screen / desired triangle size, and multiplies them by the density map of 5.2.3
-// (harness/terrain/density_map.cpp); the evaluation shader (terrain_tri.tese) places vertices on the
+// (schemes/preprocess/density_map.cpp); the evaluation shader (terrain_tri.tese) places vertices on the
 // Phong surface with shape factor alpha. fractional_odd, as in Figure 5-11.
 // Shader: shaders/phong.tesc.
 //
@@ -11,7 +11,7 @@
 // on range-normalised heights per sample (tests/test_scale.cpp checks it).
 #include "render/scheme.h"
 #include "shaders/phong_params.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 #include "terrain/heightfield.h"
 
 namespace lb {

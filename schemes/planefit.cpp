@@ -4,7 +4,7 @@
 // Listing 9.7 by that coplanarity. fractional_odd as in the book. fit = 0 is the book's plane
 // (corner normals, lowest corner, inconsistent x/z scales, uncentred RMS); fit = 1 a least-squares
 // plane in world units with a centred deviation. Shaders: planefit.comp, planefit.tesc; CPU
-// reference: harness/terrain/plane_fit.cpp.
+// reference: schemes/preprocess/plane_fit.cpp.
 //
 // Scale-free (the same picture at any world scale gets the same levels): dmin and dmax are
 // fractions of the terrain extent, as in the distance scheme (defaults 50 -> 0.05 and 1000 -> 1.0
@@ -25,7 +25,7 @@
 #include "render/scheme.h"
 #include "shaders/planefit_params.h"
 #include "terrain/heightfield.h"
-#include "terrain/plane_fit.h"
+#include "schemes/preprocess/plane_fit.h"
 
 namespace lb {
 namespace {

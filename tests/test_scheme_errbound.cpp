@@ -17,7 +17,7 @@
 #include "metrics/surplus.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 using lbtest::gpu;

@@ -20,7 +20,7 @@
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
-#include "terrain/plane_fit.h"
+#include "schemes/preprocess/plane_fit.h"
 
 namespace lb {
 namespace {

@@ -3,9 +3,9 @@
 #include "camera/camera_path.h"
 #include "render/scheme.h"
 #include "shaders/shared.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 #include "terrain/heightfield.h"
-#include "terrain/plane_fit.h"
+#include "schemes/preprocess/plane_fit.h"
 
 namespace lb {
 
