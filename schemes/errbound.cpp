@@ -45,6 +45,7 @@
 
 #include "render/scheme.h"
 #include "shaders/errbound_params.h"
+#include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
 #include "schemes/preprocess/tess_deviation.h"
@@ -94,16 +95,23 @@ class ErrBound : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "errbound",
-        "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
-        "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation (docs/design.md, Schemes)",
-        {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
-          "guaranteed maximum screen-space geometric error in pixels"}},
-        Topology::Quad4,
-        Partitioning::Integer,
-        "errbound",
-        "terrain_quad",
-        true,
+        .name = "errbound",
+        .description = "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
+        .seed = "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation "
+                "(docs/design.md, Schemes)",
+        .params = {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
+                    "guaranteed maximum screen-space geometric error in pixels"}},
+        .mainParam = "max_error_px",
+        .mainParamRole = MainParamRole::ErrorBoundPx,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::Integer,
+        .tesc = "errbound",
+        .tese = "terrain_quad",
+        .culls = true,
+        // Drawn patches whose level 64 still misses max_error_px (capture slot LB_ERRBOUND_CAPTURE_UNMET).
+        .counters = {{.frameKey = "errbound_unmet_patches",
+                      .caseKey = "errbound_unmet_frames",
+                      .label = "frames with unmet bound"}},
     };
     return kInfo;
   }
@@ -116,6 +124,12 @@ class ErrBound : public Scheme {
         tex.rgba[(size_t(j) * size_t(2 * grid) + size_t(2 * i)) * 4 + size_t(k)] = t.at(p, k);
       }
     return tex;
+  }
+  std::vector<double> countFrame(const std::vector<float>& levels) const override {
+    long unmet = 0;
+    for (size_t i = 0; i + LB_CAPTURE_STRIDE <= levels.size(); i += LB_CAPTURE_STRIDE)
+      unmet += levels[i + LB_ERRBOUND_CAPTURE_UNMET] > 0.5f;
+    return {double(unmet)};
   }
 };
 

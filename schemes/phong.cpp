@@ -21,10 +21,10 @@ class Phong : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "phong",
-        "triangles: screen-space edge length / tri size x density, culling, Phong tessellation",
-        "rapp-adaptive-terrain-thesis-2011: 5.2.4 (Figures 5-11, 5-13); Boubekeur & Alexa 2008",
-        {
+        .name = "phong",
+        .description = "triangles: screen-space edge length / tri size x density, culling, Phong tessellation",
+        .seed = "rapp-adaptive-terrain-thesis-2011: 5.2.4 (Figures 5-11, 5-13); Boubekeur & Alexa 2008",
+        .params = {
             {"tri_size", LB_PHONG_TRI_SIZE, 4, 0.5, 64, false, "desired triangle edge on screen in pixels (the thesis measured 4)"},
             // Boubekeur & Alexa recommend 3/4; the thesis shows cracks near the horizon at 0.75.
             {"alpha", LB_PHONG_ALPHA, 0.75, 0, 1, false, "Phong shape factor: 0 flat triangles, 1 full Phong surface"},
@@ -37,11 +37,13 @@ class Phong : public Scheme {
             {"threshold", LB_PHONG_THRESHOLD, 0, 0, 1, false, "density map: second differences below this are ignored"},
             {"scale", LB_PHONG_SCALE, 40, 0, 10000, false, "density map: density = scale * weighted second differences"},
         },
-        Topology::Tri3,
-        Partitioning::FractionalOdd,
-        "phong",
-        "terrain_tri",
-        true,
+        .mainParam = "tri_size",
+        .mainParamRole = MainParamRole::TriangleWidthPx,
+        .topology = Topology::Tri3,
+        .partitioning = Partitioning::FractionalOdd,
+        .tesc = "phong",
+        .tese = "terrain_tri",
+        .culls = true,
     };
     return kInfo;
   }
