@@ -1,7 +1,8 @@
 // Speed-vs-accuracy charts (docs/design.md, Reports and regression checks): cost (GPU ms,
 // triangles) against screen-space error, one point per case, each scheme's Pareto front per path
 // as a line, and the error-bounded scheme's sweep over its bound (MainParamRole::ErrorBoundPx) as
-// the dashed reference front. One panel per path and error kind, each with its own padded, round axis domain (charts_axes.cpp), so a paper can print any panel.
+// the dashed reference front. One panel per path and error kind, each with its own padded, round
+// axis domain (charts_axes.cpp), so a paper can print any panel.
 #include <algorithm>
 #include <cmath>
 #include <map>

@@ -242,7 +242,7 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
         double frames = 0;
         bool any = false;
         for (auto* c : ok)
-          if (auto u = plainNumber(c->summary, key)) frames += *u, any = true;
+          if (auto u = plainNumber(c->summary, key.c_str())) frames += *u, any = true;
         row.push_back(textCell(any ? formatValue(frames) : "–"));
       }
       row.push_back(worstCell(run, ok, runHref));
