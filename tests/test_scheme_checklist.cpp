@@ -43,11 +43,20 @@ std::string shaderWithIncludes(const std::string& file, std::set<std::string>& s
   return all;
 }
 
-// `#define NAME value` lines of a header.
-std::map<std::string, std::string> defines(const std::string& text) {
+// `#define NAME value` lines of shaders/<header> and the shaders/*.h it includes, each value
+// followed through other such names (LB_PLANEFIT_DMIN is LB_DISTANCE_DMIN).
+std::map<std::string, std::string> defines(const std::string& header) {
   std::map<std::string, std::string> out;
-  static const std::regex define(R"re(#define\s+([A-Z0-9_]+)\s+([^\s]+))re");
-  for (std::sregex_iterator it(text.begin(), text.end(), define), end; it != end; ++it) out[(*it)[1]] = (*it)[2];
+  std::vector<std::string> queue{header};
+  static const std::regex define(R"re(#define[ \t]+([A-Z0-9_]+)[ \t]+([^\s]+))re");
+  static const std::regex include(R"re(#include\s+"([A-Za-z0-9_]+\.h)")re");
+  for (size_t i = 0; i < queue.size() && i < 16; ++i) {
+    std::string text = readText(kRoot + "/shaders/" + queue[i]);
+    for (std::sregex_iterator it(text.begin(), text.end(), define), end; it != end; ++it) out[(*it)[1]] = (*it)[2];
+    for (std::sregex_iterator it(text.begin(), text.end(), include), end; it != end; ++it) queue.push_back((*it)[1]);
+  }
+  for (auto& [name, value] : out)
+    for (int hop = 0; hop < 8 && out.count(value); ++hop) value = out[value];
   return out;
 }
 
@@ -75,7 +84,7 @@ std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& 
   if (!info.compute.empty()) need(exists("shaders/" + info.compute + ".comp"), "shaders/" + info.compute + ".comp");
   if (!info.params.empty()) {
     const std::string header = info.tesc + "_params.h";
-    auto slots = defines(readText(kRoot + "/shaders/" + header));
+    auto slots = defines(header);
     need(!slots.empty(), "shaders/" + header + " (its parameter slots)");
     for (const ParamSpec& p : info.params) {
       const std::string macro = "LB_" + upper(info.tesc) + "_" + upper(p.name);
