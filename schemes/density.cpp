@@ -9,8 +9,8 @@
 // terrain's height range, taken per heightfield sample (no world distance), and tri_size is in
 // pixels, so scaling extent, heights and camera together changes nothing (tests/test_scale.cpp).
 #include "render/scheme.h"
-#include "shaders/density_params.h"
 #include "schemes/preprocess/density_map.h"
+#include "shaders/density_params.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -23,13 +23,17 @@ class Density : public Scheme {
         .name = "density",
         .description = "screen-space edge sphere / tri size, times the maximum height-curvature density along the edge",
         .seed = "amd-detail-tessellation-11: Density-based Tessellation; rapp-adaptive-terrain-thesis-2011: 5.2.3",
-        .params = {
-            // Heights are normalised to [0,1]; the SDK used 2/255 to skip its 8-bit steps, float maps have none.
-            {"threshold", LB_DENSITY_THRESHOLD, 0, 0, 1, false, "second differences below this (normalised height) are ignored"},
-            // Per-sample second differences shrink with resolution: 40 spreads a 513^2 map over (1/255, 1].
-            {"scale", LB_DENSITY_SCALE, 40, 0, 10000, false, "density = scale * weighted second differences, clamped to [1/255, 1]"},
-            {"tri_size", LB_DENSITY_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels before the density factor"},
-        },
+        .params =
+            {
+                // Heights are normalised to [0,1]; the SDK used 2/255 to skip its 8-bit steps, float maps have none.
+                {"threshold", LB_DENSITY_THRESHOLD, 0, 0, 1, false,
+                 "second differences below this (normalised height) are ignored"},
+                // Per-sample second differences shrink with resolution: 40 spreads a 513^2 map over (1/255, 1].
+                {"scale", LB_DENSITY_SCALE, 40, 0, 10000, false,
+                 "density = scale * weighted second differences, clamped to [1/255, 1]"},
+                {"tri_size", LB_DENSITY_TRI_SIZE, 3, 0.5, 64, false,
+                 "target triangle width in pixels before the density factor"},
+            },
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
         .topology = Topology::Quad4,

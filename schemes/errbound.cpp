@@ -44,11 +44,11 @@
 #include <vector>
 
 #include "render/scheme.h"
+#include "schemes/preprocess/tess_deviation.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
-#include "schemes/preprocess/tess_deviation.h"
 
 namespace lb {
 namespace {
@@ -96,9 +96,11 @@ class ErrBound : public Scheme {
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
         .name = "errbound",
-        .description = "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
-        .seed = "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation "
-                "(docs/design.md, Schemes)",
+        .description =
+            "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
+        .seed =
+            "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation "
+            "(docs/design.md, Schemes)",
         .params = {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
                     "guaranteed maximum screen-space geometric error in pixels"}},
         .mainParam = "max_error_px",

@@ -23,9 +23,9 @@
 
 #include "error.h"
 #include "render/scheme.h"
+#include "schemes/preprocess/plane_fit.h"
 #include "shaders/planefit_params.h"
 #include "terrain/heightfield.h"
-#include "schemes/preprocess/plane_fit.h"
 
 namespace lb {
 namespace {
@@ -37,16 +37,21 @@ class PlaneFitScheme : public Scheme {
         .name = "planefit",
         .description = "distance LOD weighted by per-16x16-block coplanarity from a compute pre-pass",
         .seed = "practical-d3d11-ch9: 9.1.2 Pre-Processing the Height Map, Listings 9.10-9.16 (+ Listing 9.7)",
-        .params = {{"min_lod", LB_PLANEFIT_MIN_LOD, 1, 1, 64, false, "level of flat or distant patches (minMaxLOD.x)"},
-         {"max_lod", LB_PLANEFIT_MAX_LOD, 32, 1, 64, false, "level of rough patches at dmin and nearer (minMaxLOD.y)"},
-         {"dmin", LB_PLANEFIT_DMIN, 0.05, 0, 8, false, "distance / terrain extent of full distance LOD (minMaxDistance.x)"},
-         {"dmax", LB_PLANEFIT_DMAX, 1.0, 0, 8, false, "distance / terrain extent where the LOD reaches min_lod (minMaxDistance.y)"},
-         {"fit", LB_PLANEFIT_FIT, 0, 0, 1, true, "fit=book|lsq: 0 = the book's corner-normal plane, 1 = least-squares plane"},
-         // The book's deviation is mostly the tilt of its nearly vertical plane (0.3-0.8 on the
-         // procedural terrains); the least-squares one, divided by the extent, is ~0.001-0.02 there.
-         {"roughness", LB_PLANEFIT_ROUGHNESS, 0.75, 1e-6, 1e6, false,
-          "block deviation earning the full distance LOD (fit=0: the book's unitless deviation, ~0.3-0.8; fit=1: "
-          "fraction of the terrain extent, e.g. 0.004)"}},
+        .params =
+            {{"min_lod", LB_PLANEFIT_MIN_LOD, 1, 1, 64, false, "level of flat or distant patches (minMaxLOD.x)"},
+             {"max_lod", LB_PLANEFIT_MAX_LOD, 32, 1, 64, false,
+              "level of rough patches at dmin and nearer (minMaxLOD.y)"},
+             {"dmin", LB_PLANEFIT_DMIN, 0.05, 0, 8, false,
+              "distance / terrain extent of full distance LOD (minMaxDistance.x)"},
+             {"dmax", LB_PLANEFIT_DMAX, 1.0, 0, 8, false,
+              "distance / terrain extent where the LOD reaches min_lod (minMaxDistance.y)"},
+             {"fit", LB_PLANEFIT_FIT, 0, 0, 1, true,
+              "fit=book|lsq: 0 = the book's corner-normal plane, 1 = least-squares plane"},
+             // The book's deviation is mostly the tilt of its nearly vertical plane (0.3-0.8 on the
+             // procedural terrains); the least-squares one, divided by the extent, is ~0.001-0.02 there.
+             {"roughness", LB_PLANEFIT_ROUGHNESS, 0.75, 1e-6, 1e6, false,
+              "block deviation earning the full distance LOD (fit=0: the book's unitless deviation, ~0.3-0.8; fit=1: "
+              "fraction of the terrain extent, e.g. 0.004)"}},
         .mainParam = "max_lod",
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalOdd,
@@ -66,7 +71,8 @@ class PlaneFitScheme : public Scheme {
     PlaneFitResult r = fitPlanes(hf, v.at("fit") != 0 ? PlaneFit::LeastSquares : PlaneFit::Book);
     SchemeTexture tex{r.width, r.height, {}};
     tex.rgba.reserve(r.blocks.size() * 4);
-    for (const PlaneFitBlock& b : r.blocks) tex.rgba.insert(tex.rgba.end(), {b.normal.x, b.normal.y, b.normal.z, b.deviation});
+    for (const PlaneFitBlock& b : r.blocks)
+      tex.rgba.insert(tex.rgba.end(), {b.normal.x, b.normal.y, b.normal.z, b.deviation});
     return tex;
   }
   void validate(const ParamValues& v) const override {

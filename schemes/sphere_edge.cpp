@@ -17,8 +17,9 @@ class SphereEdge : public Scheme {
     static const SchemeInfo kInfo = {
         .name = "sphere-edge",
         .description = "screen-space projected patch edge / target triangle width (fails edge-on)",
-        .seed = "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (Figure 7, commented-out edge "
-                "version)",
+        .seed =
+            "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (Figure 7, commented-out edge "
+            "version)",
         .params = {{"tri_size", LB_SPHERE_EDGE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels"},
                    {kIntegerParam, LB_SPHERE_EDGE_INTEGER, 0, 0, 1, true,
                     "1 = integer partitioning instead of fractional_even"}},

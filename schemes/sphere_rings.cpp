@@ -129,17 +129,20 @@ class SphereRings : public Scheme {
     static const SchemeInfo kInfo = {
         .name = "sphere-rings",
         .description =
-            "sphere LOD on concentric tile rings doubling in size around the LOD camera, crack-free across ring boundaries",
-        .seed = "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
-                "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement "
-                "Map Generation (snapping)",
-        .params = {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
-          "target triangle width in pixels (g_tessellatedTriSize)"},
-         {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
-          "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
-          "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
-         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
-          "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
+            "sphere LOD on concentric tile rings doubling in size around the LOD camera, crack-free across ring "
+            "boundaries",
+        .seed =
+            "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
+            "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement "
+            "Map Generation (snapping)",
+        .params =
+            {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
+              "target triangle width in pixels (g_tessellatedTriSize)"},
+             {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
+              "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
+              "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
+             {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
+              "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
         .topology = Topology::Quad4,

@@ -5,13 +5,12 @@
 
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "report/charts.h"
 #include "schemes/registry.h"
@@ -31,7 +30,9 @@ std::string readText(const std::string& path) {
   return s.str();
 }
 
-bool exists(const std::string& path) { return bool(std::ifstream(kRoot + "/" + path)); }
+bool exists(const std::string& path) {
+  return bool(std::ifstream(kRoot + "/" + path));
+}
 
 // A shader's text with the text of every shaders/*.glsl it includes, recursively.
 std::string shaderWithIncludes(const std::string& file, std::set<std::string>& seen) {
@@ -106,8 +107,8 @@ std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& 
     need(swept, "configs/quick.json: {\"name\": \"" + info.name + "\", \"params\": {\"" + info.mainParam +
                     "\": [several values]}}");
   }
-  need(configEntry(ci, info.name) != nullptr, "configs/ci.json: {\"name\": \"" + info.name +
-                                                  "\"} (then bash scripts/refresh-baseline.sh)");
+  need(configEntry(ci, info.name) != nullptr,
+       "configs/ci.json: {\"name\": \"" + info.name + "\"} (then bash scripts/refresh-baseline.sh)");
   bool styled = false;
   for (const SchemeStyle& s : schemeStyles()) styled = styled || info.name == s.scheme;
   need(styled, "harness/report/charts_style.cpp: a colour and point shape in schemeStyles()");

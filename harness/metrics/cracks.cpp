@@ -63,7 +63,8 @@ long layoutCrackEdges(const PatchGeometry& geometry, const std::vector<float>& l
 long analyticCracks(const Scheme& scheme, const ParamValues& params, const Heightfield& terrain, int grid,
                     const std::vector<float>& levels) {
   PatchGeometry layout = scheme.patchLayout(terrain, params, grid);
-  return layout.indices.empty() ? gridCrackEdges(scheme.info().topology, grid, levels) : layoutCrackEdges(layout, levels);
+  return layout.indices.empty() ? gridCrackEdges(scheme.info().topology, grid, levels)
+                                : layoutCrackEdges(layout, levels);
 }
 
 RgbaImage crackMaskImage(const RgbaImage& frame, const std::vector<uint8_t>& mask) {

@@ -67,9 +67,11 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
   // level, the reference every scheme is read against. Only when present: an empty layer makes
   // Vega warn of infinite extents.
   if (hasBound)
-    layers.push_back({{"transform", {cell, {{"filter", "datum.errbound"}}}},
-                      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour(boundScheme)}}},
-                      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
+    layers.push_back(
+        {{"transform", {cell, {{"filter", "datum.errbound"}}}},
+         {"mark",
+          {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour(boundScheme)}}},
+         {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
   layers.push_back({{"transform", {cell}},
                     {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
                     {"encoding",
@@ -103,7 +105,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     std::map<std::string, std::vector<double>> costsOf;               // by scenario: one y axis per row
     std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
     const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
-    const std::string boundScheme = bounded ? bounded->info().name : "", boundParam = bounded ? bounded->info().mainParam : "";
+    const std::string boundScheme = bounded ? bounded->info().name : "",
+                      boundParam = bounded ? bounded->info().mainParam : "";
     std::set<std::string> boundIn;  // scenarios with cases of the error-bounded scheme
     for (const ErrorKind& err : kErrors) {
       // Group cases by scheme and path: a front only compares settings of one scheme on one path.
@@ -162,7 +165,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
       json row = json::array();
       for (const ErrorKind& err : kErrors)
         if (errsOf.count({s, err.label}))
-          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, boundScheme, boundIn.count(s) > 0, shown > 1));
+          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, boundScheme,
+                              boundIn.count(s) > 0, shown > 1));
       rows.push_back({{"hconcat", row}});
     }
     json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "

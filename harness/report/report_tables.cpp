@@ -231,13 +231,15 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
         surplus = formatValue(mean / n) + (*sLo < *sHi ? " (" + formatValue(*sLo) + "–" + formatValue(*sHi) + ")" : "");
       }
       std::vector<Cell> row{
-          schemeCell(run, scheme), textCell(scenario),
+          schemeCell(run, scheme),
+          textCell(scenario),
           textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
           textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
           textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
           textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
           textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
-          textCell(sat ? formatValue(100 * *sat) + " %" : "–"), textCell(surplus)};
+          textCell(sat ? formatValue(100 * *sat) + " %" : "–"),
+          textCell(surplus)};
       for (const std::string& key : counterKeys) {
         double frames = 0;
         bool any = false;
