@@ -26,22 +26,26 @@ class Distance : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "distance",
-        "lerp(min_lod, max_lod) by the camera distance of patch and edge midpoints between dmin and dmax",
-        "practical-d3d11-ch9: 9.1.1 Listing 9.7 ComputePatchLOD; amd-detail-tessellation-11: Distance-adaptive "
-        "Tessellation (per-edge factors)",
-        {{"min_lod", LB_DISTANCE_MIN_LOD, 1, 1, 64, false, "level at distance dmax and beyond (minMaxLOD.x)"},
-         {"max_lod", LB_DISTANCE_MAX_LOD, 32, 1, 64, false, "level at distance dmin and nearer (minMaxLOD.y)"},
-         // Range up to 8 extents (twice the far plane): old world-unit values (50, 1000) fail loudly.
-         {"dmin", LB_DISTANCE_DMIN, 0.05, 0, 8, false,
-          "distance / terrain extent at which the level reaches max_lod (minMaxDistance.x)"},
-         {"dmax", LB_DISTANCE_DMAX, 1.0, 0, 8, false,
-          "distance / terrain extent at which the level falls to min_lod (minMaxDistance.y)"}},
-        Topology::Quad4,
-        Partitioning::FractionalOdd,
-        "distance",
-        "terrain_quad",
-        true,
+        .name = "distance",
+        .description =
+            "lerp(min_lod, max_lod) by the camera distance of patch and edge midpoints between dmin and dmax",
+        .seed =
+            "practical-d3d11-ch9: 9.1.1 Listing 9.7 ComputePatchLOD; amd-detail-tessellation-11: Distance-adaptive "
+            "Tessellation (per-edge factors)",
+        .params = {{"min_lod", LB_DISTANCE_MIN_LOD, 1, 1, 64, false, "level at distance dmax and beyond (minMaxLOD.x)"},
+                   {"max_lod", LB_DISTANCE_MAX_LOD, 32, 1, 64, false,
+                    "level at distance dmin and nearer (minMaxLOD.y)"},
+                   // Range up to 8 extents (twice the far plane): old world-unit values (50, 1000) fail loudly.
+                   {"dmin", LB_DISTANCE_DMIN, 0.05, 0, 8, false,
+                    "distance / terrain extent at which the level reaches max_lod (minMaxDistance.x)"},
+                   {"dmax", LB_DISTANCE_DMAX, 1.0, 0, 8, false,
+                    "distance / terrain extent at which the level falls to min_lod (minMaxDistance.y)"}},
+        .mainParam = "max_lod",
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::FractionalOdd,
+        .tesc = "distance",
+        .tese = "terrain_quad",
+        .culls = true,
     };
     return kInfo;
   }

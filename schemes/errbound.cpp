@@ -2,7 +2,7 @@
 // error, projected to the screen, refine until under a pixel budget) applied to hardware
 // tessellation: a guaranteed maximum screen-space error with as few triangles as it can manage.
 //
-// Load time (CPU, harness/terrain/tess_deviation.cpp): per patch and per level 2^k, k = 0..6, the
+// Load time (CPU, schemes/preprocess/tess_deviation.cpp): per patch and per level 2^k, k = 0..6, the
 // largest vertical distance dev(p, k) between the triangles the tessellator draws and the true
 // bilinear heightfield, anywhere in the patch. The triangles are the reference tessellator's
 // (integer partitioning): the transition strips next to finer edges for every power-of-two edge
@@ -44,10 +44,11 @@
 #include <vector>
 
 #include "render/scheme.h"
+#include "schemes/preprocess/tess_deviation.h"
 #include "shaders/errbound_params.h"
+#include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
-#include "terrain/tess_deviation.h"
 
 namespace lb {
 namespace {
@@ -94,16 +95,25 @@ class ErrBound : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "errbound",
-        "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
-        "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation (docs/design.md, Schemes)",
-        {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
-          "guaranteed maximum screen-space geometric error in pixels"}},
-        Topology::Quad4,
-        Partitioning::Integer,
-        "errbound",
-        "terrain_quad",
-        true,
+        .name = "errbound",
+        .description =
+            "smallest power-of-two level per patch whose precomputed deviation stays under max_error_px on screen",
+        .seed =
+            "not from the seeds: chunked-LOD / CDLOD screen-space error bound applied to tessellation "
+            "(docs/design.md, Schemes)",
+        .params = {{"max_error_px", LB_ERRBOUND_MAX_ERROR_PX, 1, 0.1, 64, false,
+                    "guaranteed maximum screen-space geometric error in pixels"}},
+        .mainParam = "max_error_px",
+        .mainParamRole = MainParamRole::ErrorBoundPx,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::Integer,
+        .tesc = "errbound",
+        .tese = "terrain_quad",
+        .culls = true,
+        // Drawn patches whose level 64 still misses max_error_px (capture slot LB_ERRBOUND_CAPTURE_UNMET).
+        .counters = {{.frameKey = "errbound_unmet_patches",
+                      .caseKey = "errbound_unmet_frames",
+                      .label = "frames with unmet bound"}},
     };
     return kInfo;
   }
@@ -116,6 +126,12 @@ class ErrBound : public Scheme {
         tex.rgba[(size_t(j) * size_t(2 * grid) + size_t(2 * i)) * 4 + size_t(k)] = t.at(p, k);
       }
     return tex;
+  }
+  std::vector<double> countFrame(const std::vector<float>& levels) const override {
+    long unmet = 0;
+    for (size_t i = 0; i + LB_CAPTURE_STRIDE <= levels.size(); i += LB_CAPTURE_STRIDE)
+      unmet += levels[i + LB_ERRBOUND_CAPTURE_UNMET] > 0.5f;
+    return {double(unmet)};
   }
 };
 

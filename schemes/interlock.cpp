@@ -23,19 +23,23 @@ class Interlock : public Scheme {
     // 1 about a terrain diagonal away). max_lod 16 is one segment per heightfield texel for 513
     // samples over a 32-patch grid (the book sizes its height map 4-8x its grid for this reason).
     static const SchemeInfo kInfo = {
-        "interlock",
-        "interlocking tiles: distance LOD of own + 4 neighbour midpoints, edge = min",
-        "practical-d3d11-ch9: 9.1.1 GPU-Accelerated Interlocking Tiles, Listings 9.1, 9.2, 9.4-9.7",
-        {{"dmin", LB_INTERLOCK_DMIN, 0.1, 0, 8, false, "distance / terrain extent at and below which a midpoint gets max_lod"},
-         {"dmax", LB_INTERLOCK_DMAX, 1.5, 0, 8, false, "distance / terrain extent at and beyond which a midpoint gets min_lod"},
-         {"min_lod", LB_INTERLOCK_MIN_LOD, 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
-         {"max_lod", LB_INTERLOCK_MAX_LOD, 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
-         {"cull", LB_INTERLOCK_CULL, 1, 0, 1, true, "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
-        Topology::Quad12,
-        Partitioning::FractionalOdd,
-        "interlock",
-        "terrain_quad",
-        true,
+        .name = "interlock",
+        .description = "interlocking tiles: distance LOD of own + 4 neighbour midpoints, edge = min",
+        .seed = "practical-d3d11-ch9: 9.1.1 GPU-Accelerated Interlocking Tiles, Listings 9.1, 9.2, 9.4-9.7",
+        .params = {{"dmin", LB_INTERLOCK_DMIN, 0.1, 0, 8, false,
+                    "distance / terrain extent at and below which a midpoint gets max_lod"},
+                   {"dmax", LB_INTERLOCK_DMAX, 1.5, 0, 8, false,
+                    "distance / terrain extent at and beyond which a midpoint gets min_lod"},
+                   {"min_lod", LB_INTERLOCK_MIN_LOD, 1, 1, 64, false, "level of distant patches (minMaxLOD.x)"},
+                   {"max_lod", LB_INTERLOCK_MAX_LOD, 16, 1, 64, false, "level of near patches (minMaxLOD.y)"},
+                   {"cull", LB_INTERLOCK_CULL, 1, 0, 1, true,
+                    "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
+        .mainParam = "max_lod",
+        .topology = Topology::Quad12,
+        .partitioning = Partitioning::FractionalOdd,
+        .tesc = "interlock",
+        .tese = "terrain_quad",
+        .culls = true,
     };
     return kInfo;
   }

@@ -10,13 +10,14 @@ class Reference : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "reference",
-        "integer level 64 on every edge and inside, no culling (ground truth for image metrics)",
-        "accuracy baseline: docs/design.md, Schemes and What is measured",
-        {},
-        Topology::Quad4,
-        Partitioning::Integer,
-        "reference",
+        .name = "reference",
+        .description = "integer level 64 on every edge and inside, no culling (ground truth for image metrics)",
+        .seed = "accuracy baseline: docs/design.md, Schemes and What is measured",
+        .params = {},
+        .mainParam = "",
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::Integer,
+        .tesc = "reference",
     };
     return kInfo;
   }

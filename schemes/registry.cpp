@@ -38,6 +38,12 @@ const Scheme* findScheme(const std::string& name) {
   return nullptr;
 }
 
+const Scheme* schemeWithRole(MainParamRole role) {
+  for (const Scheme* s : allSchemes())
+    if (s->info().mainParamRole == role && !s->info().mainParam.empty()) return s;
+  return nullptr;
+}
+
 std::string schemeNames() {
   std::string out;
   for (const Scheme* s : allSchemes()) out += (out.empty() ? "" : ", ") + s->info().name;

@@ -12,5 +12,7 @@ const std::vector<const Scheme*>& allSchemes();
 // nullptr when unknown.
 const Scheme* findScheme(const std::string& name);
 std::string schemeNames();  // "a, b, c" for error messages
+// The first registered scheme whose main parameter plays `role`; nullptr when none does.
+const Scheme* schemeWithRole(MainParamRole role);
 
 }  // namespace lb

@@ -12,16 +12,20 @@ class Sphere : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "sphere",
-        "screen-space projected edge sphere / target triangle width",
-        "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD; Crack-Free Tessellation",
-        {{"tri_size", LB_SPHERE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels (g_tessellatedTriSize)"},
-         {kIntegerParam, LB_SPHERE_INTEGER, 0, 0, 1, true, "1 = integer partitioning instead of fractional_even (popping scenario)"}},
-        Topology::Quad4,
-        Partitioning::FractionalEven,
-        "sphere",
-        "terrain_quad",
-        true,
+        .name = "sphere",
+        .description = "screen-space projected edge sphere / target triangle width",
+        .seed = "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD; Crack-Free Tessellation",
+        .params = {{"tri_size", LB_SPHERE_TRI_SIZE, 3, 0.5, 64, false,
+                    "target triangle width in pixels (g_tessellatedTriSize)"},
+                   {kIntegerParam, LB_SPHERE_INTEGER, 0, 0, 1, true,
+                    "1 = integer partitioning instead of fractional_even (popping scenario)"}},
+        .mainParam = "tri_size",
+        .mainParamRole = MainParamRole::TriangleWidthPx,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::FractionalEven,
+        .tesc = "sphere",
+        .tese = "terrain_quad",
+        .culls = true,
     };
     return kInfo;
   }

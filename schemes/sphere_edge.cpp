@@ -15,16 +15,21 @@ class SphereEdge : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "sphere-edge",
-        "screen-space projected patch edge / target triangle width (fails edge-on)",
-        "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (Figure 7, commented-out edge version)",
-        {{"tri_size", LB_SPHERE_EDGE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels"},
-         {kIntegerParam, LB_SPHERE_EDGE_INTEGER, 0, 0, 1, true, "1 = integer partitioning instead of fractional_even"}},
-        Topology::Quad4,
-        Partitioning::FractionalEven,
-        "sphere_edge",
-        "terrain_quad",
-        true,
+        .name = "sphere-edge",
+        .description = "screen-space projected patch edge / target triangle width (fails edge-on)",
+        .seed =
+            "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (Figure 7, commented-out edge "
+            "version)",
+        .params = {{"tri_size", LB_SPHERE_EDGE_TRI_SIZE, 3, 0.5, 64, false, "target triangle width in pixels"},
+                   {kIntegerParam, LB_SPHERE_EDGE_INTEGER, 0, 0, 1, true,
+                    "1 = integer partitioning instead of fractional_even"}},
+        .mainParam = "tri_size",
+        .mainParamRole = MainParamRole::TriangleWidthPx,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::FractionalEven,
+        .tesc = "sphere_edge",
+        .tese = "terrain_quad",
+        .culls = true,
     };
     return kInfo;
   }

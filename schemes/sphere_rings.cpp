@@ -37,7 +37,6 @@
 #include <utility>
 
 #include "error.h"
-#include "metrics/cracks.h"
 #include "render/patch_grid.h"
 #include "render/scheme.h"
 #include "schemes/sphere_rings_layout.h"
@@ -128,23 +127,29 @@ class SphereRings : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "sphere-rings",
-        "sphere LOD on concentric tile rings doubling in size around the LOD camera, crack-free across ring boundaries",
-        "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
-        "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement Map "
-        "Generation (snapping)",
-        {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
-          "target triangle width in pixels (g_tessellatedTriSize)"},
-         {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
-          "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
-          "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
-         {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
-          "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
-        Topology::Quad4,
-        Partitioning::FractionalEven,
-        "sphere_rings",
-        "terrain_quad",
-        true,
+        .name = "sphere-rings",
+        .description =
+            "sphere LOD on concentric tile rings doubling in size around the LOD camera, crack-free across ring "
+            "boundaries",
+        .seed =
+            "nvidia-dx11-terrain-tessellation-2011: Non-Uniform Patch Sizes; Implementation - Adjacency of "
+            "Different-Sized Patches; Advisability of Adjacent, Different-sized Patches; Scrolling in Displacement "
+            "Map Generation (snapping)",
+        .params =
+            {{"tri_size", LB_SPHERE_RINGS_TRI_SIZE, 3, 0.5, 64, false,
+              "target triangle width in pixels (g_tessellatedTriSize)"},
+             {"rings", LB_SPHERE_RINGS_RINGS, 0, 0, 8, true,
+              "tile rings (8x8 tiles of 8x8 patches, inner 4x4 hole after the first; innermost patch = extent / grid); "
+              "0 = the fewest covering the terrain from any camera, 1 + ceil(log2(grid / 32))"},
+             {"pow2", LB_SPHERE_RINGS_POW2, 1, 0, 1, true,
+              "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
+        .mainParam = "tri_size",
+        .mainParamRole = MainParamRole::TriangleWidthPx,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::FractionalEven,
+        .tesc = "sphere_rings",
+        .tese = "terrain_quad",
+        .culls = true,
     };
     return kInfo;
   }
@@ -165,12 +170,11 @@ class SphereRings : public Scheme {
     frame.params[LB_SPHERE_RINGS_CENTRE_Z / 4][LB_SPHERE_RINGS_CENTRE_Z % 4] = float(k.y);
   }
 
-  // Ring boundaries are T-junctions: the grid rule does not apply; compare vertex patterns. The
+  // Ring boundaries are T-junctions, so cracks are counted on this mesh rather than the grid. The
   // layout is translation-invariant, so the local mesh has the topology of every frame's; patches
-  // off the terrain that frame were culled (levels 0) and do not count.
-  long crackEdges(const Heightfield& hf, const ParamValues& v, int grid,
-                  const std::vector<float>& levels) const override {
-    return layoutCrackEdges(buildRings(hf, v, grid, false), levels);
+  // off the terrain that frame are culled (levels 0).
+  PatchGeometry patchLayout(const Heightfield& hf, const ParamValues& v, int grid) const override {
+    return buildRings(hf, v, grid, false);
   }
 };
 

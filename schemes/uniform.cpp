@@ -9,13 +9,15 @@ class Uniform : public Scheme {
  public:
   const SchemeInfo& info() const override {
     static const SchemeInfo kInfo = {
-        "uniform",
-        "one fixed tessellation level everywhere",
-        "baseline",
-        {{"level", LB_UNIFORM_LEVEL, 8, 1, 64, true, "tessellation level of every edge and interior"}},
-        Topology::Quad4,
-        Partitioning::Integer,
-        "uniform",
+        .name = "uniform",
+        .description = "one fixed tessellation level everywhere",
+        .seed = "baseline",
+        .params = {{"level", LB_UNIFORM_LEVEL, 8, 1, 64, true, "tessellation level of every edge and interior"}},
+        .mainParam = "level",
+        .mainParamRole = MainParamRole::UniformLevel,
+        .topology = Topology::Quad4,
+        .partitioning = Partitioning::Integer,
+        .tesc = "uniform",
     };
     return kInfo;
   }

@@ -1,5 +1,5 @@
 // Density map lookups (AMD "Detail Tessellation 11", Density-based; Rapp 2011, 5.2.3). The map is
-// harness/terrain/density_map.cpp's output, one texel per heightfield sample, density in .r.
+// schemes/preprocess/density_map.cpp's output, one texel per heightfield sample, density in .r.
 // Everything here is integer arithmetic identical to density_map.cpp, so tests can recompute it.
 layout(set = 0, binding = LB_BINDING_SCHEME_TEX) uniform sampler2D densityMap;
 

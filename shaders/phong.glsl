@@ -1,7 +1,7 @@
 // Phong tessellation (Boubekeur & Alexa 2008) as in Rapp 2011, Figure 5-13: the flat point is
 // projected onto the tangent plane of each corner, and the three projections are interpolated
 // barycentrically. `precise` keeps the compiler from reassociating, so a corner maps exactly onto
-// itself. harness/terrain/phong_surface.cpp is the same arithmetic on the CPU.
+// itself. schemes/preprocess/phong_surface.cpp is the same arithmetic on the CPU.
 
 // p minus its offset from `corner` along the corner's unit normal.
 vec3 phongProjection(vec3 p, vec3 corner, vec3 normal) {

@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // practical-d3d11-ch9 9.1.2 "Pre-Processing the Height Map", Listings 9.10-9.16: one 16x16
 // workgroup per heightmap block writes (plane normal, coplanarity) to the lookup texture. fit = 0
-// follows the listings (transcription errors fixed, see harness/terrain/plane_fit.cpp), fit = 1
-// is the corrected least-squares version. harness/terrain/plane_fit.cpp is the CPU reference: keep
+// follows the listings (transcription errors fixed, see schemes/preprocess/plane_fit.cpp), fit = 1
+// is the corrected least-squares version. schemes/preprocess/plane_fit.cpp is the CPU reference: keep
 // the arithmetic and its order identical.
 #define LB_COMPUTE_PASS
 #include "shared.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "gpu_fixture.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 
 using namespace lb;
 

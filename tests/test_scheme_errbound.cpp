@@ -17,7 +17,7 @@
 #include "metrics/surplus.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -219,7 +219,7 @@ TEST_F(ErrboundScheme, OwnSurplusIsOneOnRoughTerrain) {
       std::memcpy(err.data(), bytes.data(), bytes.size());
       SurplusResult s = matcher.match(gpu(), lbtest::testTerrain(), rs, pose, errorP95(err), fr.stats.clipInvocations);
       std::printf("[errbound] %s: own surplus %.3f (bound %.3f, p95 %.3f vs %.3f, matched %d, %d renders)\n", path,
-                  s.surplus, s.boundPx, s.errboundP95, errorP95(err), s.matched, s.renders);
+                  s.surplus, s.boundPx, s.boundP95, errorP95(err), s.matched, s.renders);
       EXPECT_NEAR(s.surplus, 1.0, 0.1) << path;
     }
 }

@@ -8,8 +8,8 @@
 
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
-#include "terrain/density_map.h"
-#include "terrain/phong_surface.h"
+#include "schemes/preprocess/density_map.h"
+#include "schemes/preprocess/phong_surface.h"
 
 using namespace lb;
 

@@ -8,7 +8,7 @@
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
 #include "shaders/shared.h"
-#include "terrain/plane_fit.h"
+#include "schemes/preprocess/plane_fit.h"
 
 using namespace lb;
 using lbtest::gpu;

@@ -8,12 +8,12 @@
 #include <string>
 
 #include "schemes/registry.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
-#include "terrain/plane_fit.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/plane_fit.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 

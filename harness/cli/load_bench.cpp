@@ -20,7 +20,6 @@
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
-#include "terrain/plane_fit.h"
 
 namespace lb {
 namespace {
@@ -111,23 +110,16 @@ json specJson(const TerrainSpec& t) {
 }
 
 // A scheme's load-time work: its CPU preprocessing, or for a compute scheme the CPU reference of
-// the pass where there is one (planefit). Returns false when the scheme has none.
+// its pass. Returns false when the scheme has none.
 struct SchemeOutput {
   SchemeTexture tex;
-  PlaneFitResult planes;
 };
 bool schemeStage(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int grid, SchemeOutput& out) {
-  if (scheme.info().compute == "planefit") {
-    out.planes = fitPlanes(hf, params.at("fit") != 0 ? PlaneFit::LeastSquares : PlaneFit::Book);
-    return true;
-  }
-  if (!scheme.info().compute.empty()) return false;
-  out.tex = scheme.preprocessGrid(hf, params, grid);
+  out.tex = scheme.info().compute.empty() ? scheme.preprocessGrid(hf, params, grid) : scheme.computeReference(hf, params);
   return !out.tex.rgba.empty();
 }
 
 std::string fingerprint(const SchemeOutput& o) {
-  if (!o.planes.blocks.empty()) return fingerprint(o.planes.blocks.data(), o.planes.blocks.size() * sizeof(PlaneFitBlock));
   if (o.tex.channels == 4) return fingerprint(o.tex.rgba.data(), o.tex.rgba.size() * sizeof(float));
   // A one-channel texture hashes as the RGBA texture (r, 0, 0, 0) it replaced, so hashes of builds
   // before and after the change compare.

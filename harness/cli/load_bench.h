@@ -1,9 +1,9 @@
 #pragma once
 // `lodbench load-bench CONFIG`: what loading a terrain costs before the first frame, stage by
 // stage, on the CPU: parsing the config (which reads file terrains once to check them), the
-// terrain load, the normal map, and each configured scheme's preprocessing (errbound's deviation
-// table, density's and phong's density map; planefit runs as a GPU compute pass in the renderer,
-// so its CPU reference fitPlanes() stands in). Per stage: wall seconds, peak resident memory
+// terrain load, the normal map, and each configured scheme's preprocessing (Scheme::preprocessGrid;
+// for a pre-pass that runs as a GPU compute shader its CPU reference, Scheme::computeReference,
+// stands in). Per stage: wall seconds, peak resident memory
 // during the stage and a hash of its output (so runs with different thread counts or builds can
 // be checked for identical results). Writes JSON to stdout (and --out).
 #include <string>

@@ -39,11 +39,14 @@ int probeCommand(const ProbeCommandOptions& o) {
   if (config.terrains.empty() || config.paths.empty()) throw InputError(o.config + ": probe needs a terrain and a path");
   if (o.split != "auto" && o.split != "on" && o.split != "off")
     throw InputError("--split '" + o.split + "': expected auto, on or off");
+  // The probe's workload: one level everywhere, from the scheme whose main parameter is that level.
+  const Scheme* uniform = schemeWithRole(MainParamRole::UniformLevel);
+  const std::string& levelParam = uniform->info().mainParam;
   std::vector<int> levels = o.levels;
   if (levels.empty()) {
     levels.push_back(1);
-    if (!config.schemes.empty() && !config.schemes[0].variants.empty() && config.schemes[0].variants[0].count("level"))
-      levels[0] = int(config.schemes[0].variants[0].at("level"));
+    if (!config.schemes.empty() && !config.schemes[0].variants.empty() && config.schemes[0].variants[0].count(levelParam))
+      levels[0] = int(config.schemes[0].variants[0].at(levelParam));
   }
   for (int l : levels)
     if (l < 1 || l > 64) throw InputError("--levels: " + std::to_string(l) + " is outside [1, 64]");
@@ -67,12 +70,11 @@ int probeCommand(const ProbeCommandOptions& o) {
       if (old.value("device", "") != doc["device"]) throw InputError(o.out + ": rows of another device");
       doc["rows"] = old["rows"];
     }
-  const Scheme* uniform = findScheme("uniform");
   for (auto [w, h] : config.resolutions) {
     std::unique_ptr<Renderer> renderer;
     if (o.compare) renderer = std::make_unique<Renderer>(ctx, terrain, RenderSettings{w, h, config.grid});
     for (int level : levels) {
-      if (renderer) renderer->setScheme(*uniform, {{"level", level}});
+      if (renderer) renderer->setScheme(*uniform, {{levelParam, level}});
       for (const std::string& m : modes) {
         RenderMode mode = timingRenderMode(m);
         json row = {{"mode", m}, {"grid", config.grid}, {"level", level}, {"resolution", {w, h}}};

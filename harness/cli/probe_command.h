@@ -12,7 +12,7 @@ namespace lb {
 struct ProbeCommandOptions {
   std::string config;
   std::string device;            // overrides the config's
-  std::vector<int> levels;       // default: the config's first scheme's "level" (uniform), else 1
+  std::vector<int> levels;       // default: the config's first scheme's value of the uniform-level main parameter, else 1
   std::vector<std::string> modes;  // default: the config's "timing"
   int frames = 100, warmup = 20, frame = 0;
   bool compare = false;

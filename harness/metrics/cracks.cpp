@@ -62,8 +62,9 @@ long layoutCrackEdges(const PatchGeometry& geometry, const std::vector<float>& l
 
 long analyticCracks(const Scheme& scheme, const ParamValues& params, const Heightfield& terrain, int grid,
                     const std::vector<float>& levels) {
-  long own = scheme.crackEdges(terrain, params, grid, levels);
-  return own >= 0 ? own : gridCrackEdges(scheme.info().topology, grid, levels);
+  PatchGeometry layout = scheme.patchLayout(terrain, params, grid);
+  return layout.indices.empty() ? gridCrackEdges(scheme.info().topology, grid, levels)
+                                : layoutCrackEdges(layout, levels);
 }
 
 RgbaImage crackMaskImage(const RgbaImage& frame, const std::vector<uint8_t>& mask) {

@@ -35,8 +35,8 @@ long gridCrackEdges(Topology topology, int grid, const std::vector<float>& level
 // small patch is drawn (the large patch drawn too); such a boundary counts once.
 long layoutCrackEdges(const PatchGeometry& geometry, const std::vector<float>& levels);
 
-// The analytic crack count of one frame: Scheme::crackEdges when the scheme has its own patch
-// layout (it returns >= 0), otherwise gridCrackEdges(topology, grid, levels). `levels` is
+// The analytic crack count of one frame: layoutCrackEdges on Scheme::patchLayout when the scheme
+// has its own patch layout, otherwise gridCrackEdges(topology, grid, levels). `levels` is
 // Renderer::capturedLevels() after a capture pass (renderImage) of that frame; `grid` the
 // renderer's RenderSettings::grid.
 long analyticCracks(const Scheme& scheme, const ParamValues& params, const Heightfield& terrain, int grid,

@@ -1,5 +1,6 @@
 #include "metrics/frame_metrics.h"
 
+#include "schemes/registry.h"
 #include "shaders/shared.h"
 
 namespace lb {
@@ -12,8 +13,10 @@ std::vector<std::string> metricColumns() {
                         "img_mad", "img_frac_over", "cracks_analytic", "cracks_pixels", "pop_mean", "pop_p99",
                         "pop_changed", "surplus", "saturated_patches"})
     c.push_back(n);
-  for (const char* n : {"surplus_bound_px", "surplus_p95_px", "surplus_triangles", "surplus_matched", "errbound_unmet_patches"})
-    c.push_back(n);
+  for (const char* n : {"surplus_bound_px", "surplus_p95_px", "surplus_triangles", "surplus_matched"}) c.push_back(n);
+  // Every registered scheme's own counters, so all cases share one set of columns.
+  for (const Scheme* s : allSchemes())
+    for (const SchemeCounter& counter : s->info().counters) c.push_back(counter.frameKey);
   return c;
 }
 

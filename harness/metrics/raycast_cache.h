@@ -28,7 +28,7 @@ class ReferenceCache {
                          const RenderSettings& settings, const CameraPose& pose);
   const RgbaImage& image(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
                          const CameraPose& pose);
-  SurplusMatcher surplus;  // errbound renderer for the surplus search, kept across the sweep's frames
+  SurplusMatcher surplus;  // error-bounded scheme's renderer for the surplus search, kept across the sweep's frames
   int rayCasts() const { return rayCasts_; }  // images made in this process
   int loaded() const { return loaded_; }      // images read back from the directory
   double rayCastSeconds() const { return rayCastSeconds_; }  // wall time of those ray casts (progress ETA)

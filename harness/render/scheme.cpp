@@ -24,7 +24,8 @@ Partitioning Scheme::partitioning(const ParamValues& values) const {
 }
 
 double Scheme::targetAreaPx(const ParamValues& values) const {
-  auto it = values.find("tri_size");
+  if (info().mainParamRole != MainParamRole::TriangleWidthPx) return 0.0;
+  auto it = values.find(info().mainParam);
   return it == values.end() ? 0.0 : 0.5 * it->second * it->second;
 }
 

@@ -25,11 +25,30 @@ struct ParamSpec {
   std::string help;
 };
 
+// What the harness may read into a scheme's main parameter beyond "the knob a sweep turns".
+enum class MainParamRole {
+  Knob,             // trades quality for cost in no unit the harness uses
+  TriangleWidthPx,  // target triangle width in pixels: the triangle histogram's target area is width^2 / 2
+  ErrorBoundPx,     // guaranteed screen-space error in pixels: the surplus metric bisects it
+  UniformLevel,     // the one level of every edge and interior: the fixed workload of calibration and probes
+};
+
+// A per-frame count of the scheme's own, beside the metrics every scheme gets.
+struct SchemeCounter {
+  std::string frameKey;  // the measured frame's metric (frame JSON, frames CSV column)
+  std::string caseKey;   // case summary: the measured frames where it was above 0
+  std::string label;     // the report's column for caseKey, after "<scheme>: "
+};
+
 struct SchemeInfo {
   std::string name;
   std::string description;  // one line
   std::string seed;         // source document and section it follows
   std::vector<ParamSpec> params;  // each packed into FrameUniforms::params at its slot
+  // The parameter that trades quality for cost: a sweep's front varies it and a matched
+  // comparison searches it. "" = none (a scheme without parameters).
+  std::string mainParam;
+  MainParamRole mainParamRole = MainParamRole::Knob;
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
   std::string tesc;                       // shader stem: shaders/<tesc>.tesc
@@ -38,6 +57,8 @@ struct SchemeInfo {
   // Compute preprocessing: shaders/<compute>.comp writes the scheme texture once in setScheme
   // (instead of preprocess()); empty = none.
   std::string compute;
+  // Counted on every measured frame by countFrame(), in this order.
+  std::vector<SchemeCounter> counters;
 };
 
 using ParamValues = std::map<std::string, double>;
@@ -95,17 +116,20 @@ class Scheme {
   // vs fractional spacing). The evaluation shader is compiled per partitioning, so nothing else changes.
   virtual Partitioning partitioning(const ParamValues& values) const;
   // Target triangle area in px^2 for screen-space schemes, 0 when the scheme has none. Default:
-  // a `tri_size` parameter t (target triangle width) gives t^2 / 2 (NVIDIA: size 6 -> 18 px).
+  // a main parameter of role TriangleWidthPx, t, gives t^2 / 2 (NVIDIA: size 6 -> 18 px).
   virtual double targetAreaPx(const ParamValues& values) const;
   // Per-frame CPU work: packs parameters into the uniform block (override for more: `frame`
   // already holds the frame's cameras and terrain, e.g. sphere-rings centres its rings on lodEye).
   virtual void update(FrameUniforms& frame, const ParamValues& values) const;
-  // Analytic crack count (metrics/cracks.h) for a scheme with its own patchGeometry: shared edges
-  // between drawn patches whose captured levels (LB_CAPTURE_STRIDE floats per patch) leave the two
-  // sides with different vertices. -1 = the renderer's uniform grid rule applies.
-  virtual long crackEdges(const Heightfield&, const ParamValues&, int /*grid*/, const std::vector<float>& /*levels*/) const {
-    return -1;
-  }
+  // The patch mesh of patchGeometry() without what only drawing needs (culling bounds, scheme
+  // buffer contents): the crack metric finds the shared edges in it. Empty = the uniform grid.
+  virtual PatchGeometry patchLayout(const Heightfield&, const ParamValues&, int /*grid*/) const { return {}; }
+  // SchemeInfo::counters of one measured frame, one value each, from its captured levels
+  // (Renderer::capturedLevels(): LB_CAPTURE_STRIDE floats per patch).
+  virtual std::vector<double> countFrame(const std::vector<float>& /*levels*/) const { return {}; }
+  // For a scheme with a compute pre-pass (SchemeInfo::compute): the CPU reference of the texture
+  // the pass writes, so load-time costs can be measured without a device. Empty = none.
+  virtual SchemeTexture computeReference(const Heightfield&, const ParamValues&) const { return {}; }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.

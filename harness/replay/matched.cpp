@@ -8,18 +8,11 @@
 
 namespace lb {
 
-std::string matchParamName(const SchemeInfo& info) {
-  for (const char* name : {"tri_size", "level", "max_lod", "max_error_px"})
-    for (auto& p : info.params)
-      if (p.name == name) return name;
-  return "";
-}
-
 MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                            const CameraPath& path, const Config& config, const Case& c) {
   const MatchSpec& spec = config.match;
   MatchResult out;
-  out.param = matchParamName(scheme.info());
+  out.param = scheme.info().mainParam;
   if (out.param.empty()) return out;
   const ParamSpec* ps = nullptr;
   for (auto& p : scheme.info().params)
@@ -53,7 +46,7 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
     ++out.evaluations;
     return sum / n;
   };
-  // Parameters spanning orders of magnitude (tri_size 0.5..64) are searched in log space.
+  // Parameters spanning orders of magnitude (a triangle width of 0.5..64 px) are searched in log space.
   bool logScale = ps->min > 0 && ps->max / ps->min > 16;
   auto toX = [&](double v) { return logScale ? std::log(v) : v; };
   auto fromX = [&](double x) { return logScale ? std::exp(x) : x; };

@@ -23,9 +23,7 @@ struct MatchResult {
   bool reachable = true; // false when the target lies outside the parameter's range
 };
 
-// The parameter a match searches: tri_size, else level, else max_lod, else max_error_px (errbound);
-// "" for none (reference).
-std::string matchParamName(const SchemeInfo& info);
+// The parameter a match searches is the scheme's SchemeInfo::mainParam; "" = none, nothing is searched.
 MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                            const CameraPath& path, const Config& config, const Case& c);
 

@@ -10,7 +10,6 @@
 #include "metrics/stats.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
-#include "shaders/errbound_params.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 
@@ -27,13 +26,6 @@ static double saturatedPatches(const std::vector<float>& levels, Partitioning p)
     for (int k = 0; k < 6; ++k) m = std::max(m, levels[i + size_t(k)]);
     n += m >= cap;
   }
-  return double(n);
-}
-
-static double errboundUnmetPatches(const std::vector<float>& levels) {
-  long n = 0;
-  for (size_t i = 0; i + LB_CAPTURE_STRIDE <= levels.size(); i += LB_CAPTURE_STRIDE)
-    n += levels[i + LB_ERRBOUND_CAPTURE_UNMET] > 0.5f;
   return double(n);
 }
 
@@ -83,13 +75,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
-    // Surplus: errbound's triangles at the bound whose measured p95 matches this frame's (metrics/surplus.h).
+    // Surplus: the error-bounded scheme's triangles at the bound whose measured p95 matches this
+    // frame's (metrics/surplus.h).
     if (spec.on("surplus") && !e.empty()) {
       SurplusResult sr = refs.surplus.match(ctx, terrain, rs, current, s.p95, live.stats.clipInvocations);
       set("surplus", sr.surplus);
       set("surplus_bound_px", sr.boundPx);
-      set("surplus_p95_px", sr.errboundP95);
-      set("surplus_triangles", sr.errboundTriangles);
+      set("surplus_p95_px", sr.boundP95);
+      set("surplus_triangles", sr.boundTriangles);
       set("surplus_matched", double(sr.matched));
     }
   }
@@ -115,8 +108,11 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
   }
   set("saturated_patches", saturatedPatches(levels, scheme.partitioning(params)));
-  // errbound flags drawn patches whose level 64 still misses max_error_px (shaders/errbound_params.h).
-  if (scheme.info().name == "errbound") set("errbound_unmet_patches", errboundUnmetPatches(levels));
+  const std::vector<SchemeCounter>& counters = scheme.info().counters;
+  if (!counters.empty()) {
+    std::vector<double> counts = scheme.countFrame(levels);
+    for (size_t i = 0; i < counters.size(); ++i) set(counters[i].frameKey, i < counts.size() ? counts[i] : kNan);
+  }
   return m;
 }
 

@@ -70,7 +70,8 @@ static RenderSettings calibrationSettings(RenderSettings s) {
 Calibrator::Calibrator(Context& ctx, const Heightfield& terrain, const RenderSettings& settings,
                        const TimingSpec& spec, const CameraPose& pose)
     : renderer_(ctx, terrain, calibrationSettings(settings)), spec_(spec), pose_(pose) {
-  renderer_.setScheme(*findScheme("uniform"), {{"level", spec.level}});
+  const Scheme& uniform = *schemeWithRole(MainParamRole::UniformLevel);
+  renderer_.setScheme(uniform, {{uniform.info().mainParam, spec.level}});
   // One unrecorded run: pipeline creation and first-touch costs are not the clock.
   runOnce();
 }

@@ -26,7 +26,7 @@ constexpr const char* kVegaLiteSchema = "https://vega.github.io/schema/vega-lite
 std::vector<std::string> histogramBinLabels();
 
 // GPU ms and triangles vs mean and p95 screen-space error, with each scheme's Pareto front and
-// errbound's max_error_px sweep as the dashed reference front.
+// the error-bounded scheme's sweep over its bound as the dashed reference front.
 std::vector<Chart> speedCharts(const ReportRun& run);
 // Scale study: GPU ms (median, p95) and triangles against grid, resolution and each
 // scheme's swept parameter; only the charts whose variable the run varies.
@@ -42,7 +42,7 @@ std::string chartFilesHtml(const Chart& c);
 
 // --- Scheme colours (charts_style.cpp) ---------------------------------------------------------
 // One fixed colour and point shape per scheme, the same in every chart, report and legend: Paul
-// Tol's colour-blind-safe "muted" palette, black for errbound (the reference front), grey for the
+// Tol's colour-blind-safe "muted" palette, black for the error-bounded reference front, grey for the
 // uniform baseline. Names not in the table get a deterministic Okabe-Ito colour from a hash.
 struct SchemeStyle {
   const char* scheme;

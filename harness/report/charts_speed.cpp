@@ -1,7 +1,8 @@
-// Speed-vs-accuracy charts (docs/design.md, Reports and regression checks): cost (GPU ms, triangles) against screen-space
-// error, one point per case, each scheme's Pareto front per path as a line, and errbound's sweep
-// over max_error_px as the dashed reference front. One panel per path and error kind, each with
-// its own padded, round axis domain (charts_axes.cpp), so a paper can print any panel.
+// Speed-vs-accuracy charts (docs/design.md, Reports and regression checks): cost (GPU ms,
+// triangles) against screen-space error, one point per case, each scheme's Pareto front per path
+// as a line, and the error-bounded scheme's sweep over its bound (MainParamRole::ErrorBoundPx) as
+// the dashed reference front. One panel per path and error kind, each with its own padded, round
+// axis domain (charts_axes.cpp), so a paper can print any panel.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -9,6 +10,7 @@
 
 #include "report/charts.h"
 #include "report/pareto.h"
+#include "schemes/registry.h"
 
 namespace lb {
 
@@ -44,7 +46,8 @@ json fieldEquals(const char* field, const std::string& value) { return {{"field"
 
 // One panel: the rows of one path and error kind, on their own axes.
 json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const std::string& scenario,
-           const AxisDomain& xd, const AxisDomain& yd, bool hasErrbound, bool titleScenario) {
+           const AxisDomain& xd, const AxisDomain& yd, const std::string& boundScheme, bool hasBound,
+           bool titleScenario) {
   json cell = {{"filter", {{"and", {fieldEquals("scenario", scenario), fieldEquals("error", err.label)}}}}};
   json x = positionEncoding("err_px", err.axis, xd);
   json y = positionEncoding(cost.field, cost.axis, yd);
@@ -55,17 +58,20 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
                               {{"field", cost.field}, {"title", cost.axis}, {"format", ".4~g"}},
                               {{"field", "on_front"}, {"title", "on the scheme's Pareto front"}}});
   json layers = json::array();
-  // Each scheme's Pareto front (errbound's own line is the dashed reference below).
+  // Each scheme's Pareto front (the error-bounded scheme's own line is the dashed reference below).
+  // Chart rows of that scheme carry "errbound": true.
   layers.push_back({{"transform", {cell, {{"filter", "datum.on_front && !datum.errbound"}}}},
                     {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.85}}},
                     {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}});
-  // errbound's sweep in max_error_px order: the fewest triangles errbound needs for each error
+  // The error-bounded scheme's sweep in bound order: the fewest triangles it needs for each error
   // level, the reference every scheme is read against. Only when present: an empty layer makes
   // Vega warn of infinite extents.
-  if (hasErrbound)
-    layers.push_back({{"transform", {cell, {{"filter", "datum.errbound"}}}},
-                      {"mark", {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour("errbound")}}},
-                      {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
+  if (hasBound)
+    layers.push_back(
+        {{"transform", {cell, {{"filter", "datum.errbound"}}}},
+         {"mark",
+          {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour(boundScheme)}}},
+         {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
   layers.push_back({{"transform", {cell}},
                     {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
                     {"encoding",
@@ -98,7 +104,10 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     std::vector<std::string> unmeasured;
     std::map<std::string, std::vector<double>> costsOf;               // by scenario: one y axis per row
     std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
-    std::set<std::string> errboundIn;  // scenarios with errbound cases
+    const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
+    const std::string boundScheme = bounded ? bounded->info().name : "",
+                      boundParam = bounded ? bounded->info().mainParam : "";
+    std::set<std::string> boundIn;  // scenarios with cases of the error-bounded scheme
     for (const ErrorKind& err : kErrors) {
       // Group cases by scheme and path: a front only compares settings of one scheme on one path.
       std::map<std::pair<std::string, std::string>, std::vector<const ReportCase*>> groups;
@@ -120,9 +129,9 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
         for (size_t i : paretoFront(xs, costs)) onFront[i] = true;
         for (size_t i = 0; i < cases.size(); ++i) {
           const ReportCase& c = *cases[i];
-          bool errbound = c.scheme == "errbound";
-          auto bound = c.params.find("max_error_px");
-          double sweep = errbound && bound != c.params.end() && bound->is_number() ? bound->get<double>() : xs[i];
+          bool isBound = bounded && c.scheme == boundScheme;
+          auto bound = c.params.find(boundParam);
+          double sweep = isBound && bound != c.params.end() && bound->is_number() ? bound->get<double>() : xs[i];
           chart.data.push_back({{"case_id", c.id},
                                 {"scheme", c.scheme},
                                 {"params", c.paramsLabel},
@@ -131,11 +140,11 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                                 {"err_px", xs[i]},
                                 {cost.field, costs[i]},
                                 {"on_front", bool(onFront[i])},
-                                {"errbound", errbound},
+                                {"errbound", isBound},
                                 {"sweep", sweep}});
           costsOf[c.scenario].push_back(costs[i]);
           errsOf[{c.scenario, err.label}].push_back(xs[i]);
-          if (errbound) errboundIn.insert(c.scenario);
+          if (isBound) boundIn.insert(c.scenario);
         }
       }
     }
@@ -156,12 +165,14 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
       json row = json::array();
       for (const ErrorKind& err : kErrors)
         if (errsOf.count({s, err.label}))
-          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, errboundIn.count(s) > 0, shown > 1));
+          row.push_back(panel(run, cost, err, s, niceDomain(errsOf[{s, err.label}]), yd, boundScheme,
+                              boundIn.count(s) > 0, shown > 1));
       rows.push_back({{"hconcat", row}});
     }
     json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
                                  "the scheme is both cheaper and more accurate)"});
-    if (!errboundIn.empty()) subtitle.push_back("dashed: errbound's sweep over max_error_px, the reference front");
+    if (!boundIn.empty())
+      subtitle.push_back("dashed: " + boundScheme + "'s sweep over " + boundParam + ", the reference front");
     chart.spec = {{"$schema", kVegaLiteSchema},
                   {"title",
                    {{"text", cost.title},

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "report/page_assets.h"
+#include "schemes/registry.h"
 
 namespace lb {
 
@@ -188,10 +189,19 @@ Table caseTable(const ReportRun& run, std::vector<std::string>& omitted) {
 
 Table stabilityTable(const ReportRun& run, const std::string& runHref) {
   Table t{{"scheme", "path", "cases ok / failed / skipped", "cracks: edges (max)", "cracks: pixels (max)",
-           "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "surplus: mean (cases' range)",
-           "errbound: frames with unmet bound", "worst frames"},
+           "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "surplus: mean (cases' range)"},
           {},
-          {false, false, false, true, true, true, true, true, true, true, false}};
+          {false, false, false, true, true, true, true, true, true}};
+  // One column per scheme counter (SchemeInfo::counters): the sum of its case key over the cases.
+  std::vector<std::string> counterKeys;
+  for (const Scheme* s : allSchemes())
+    for (const SchemeCounter& c : s->info().counters) {
+      t.header.push_back(s->info().name + ": " + c.label);
+      t.numeric.push_back(true);
+      counterKeys.push_back(c.caseKey);
+    }
+  t.header.push_back("worst frames");
+  t.numeric.push_back(false);
   for (auto& scheme : run.schemes)
     for (auto& scenario : run.scenarios) {
       std::vector<const ReportCase*> all, ok;
@@ -207,15 +217,11 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
       auto sat = maxOver(ok, "saturated_fraction", "").first;
       // Surplus (docs/results-format.md): the mean over a case's measured frames; range over the cases.
       std::optional<double> sLo, sHi;
-      double unmet = 0;
-      bool hasUnmet = false;
-      for (auto* c : ok) {
+      for (auto* c : ok)
         if (auto v = summaryStat(c->summary, "surplus", "mean")) {
           sLo = sLo ? std::min(*sLo, *v) : *v;
           sHi = sHi ? std::max(*sHi, *v) : *v;
         }
-        if (auto u = plainNumber(c->summary, "errbound_unmet_frames")) unmet += *u, hasUnmet = true;
-      }
       std::string surplus = "–";
       if (sLo) {
         double mean = 0;
@@ -224,15 +230,25 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
           if (auto v = summaryStat(c->summary, "surplus", "mean")) mean += *v, ++n;
         surplus = formatValue(mean / n) + (*sLo < *sHi ? " (" + formatValue(*sLo) + "–" + formatValue(*sHi) + ")" : "");
       }
-      t.rows.push_back(
-          {schemeCell(run, scheme), textCell(scenario),
-           textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
-           textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
-           textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
-           textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
-           textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
-           textCell(sat ? formatValue(100 * *sat) + " %" : "–"), textCell(surplus),
-           textCell(hasUnmet ? formatValue(unmet) : "–"), worstCell(run, ok, runHref)});
+      std::vector<Cell> row{
+          schemeCell(run, scheme),
+          textCell(scenario),
+          textCell(std::to_string(ok.size()) + " / " + std::to_string(failed) + " / " + std::to_string(skipped)),
+          textCell(formatValue(maxOver(ok, "cracks_analytic", "max").first)),
+          textCell(formatValue(maxOver(ok, "cracks_pixels", "max").first)),
+          textCell(formatValue(maxOver(ok, "pop_mean", "mean").first)),
+          textCell(formatValue(maxOver(ok, "pop_p99", "max").first)),
+          textCell(sat ? formatValue(100 * *sat) + " %" : "–"),
+          textCell(surplus)};
+      for (const std::string& key : counterKeys) {
+        double frames = 0;
+        bool any = false;
+        for (auto* c : ok)
+          if (auto u = plainNumber(c->summary, key.c_str())) frames += *u, any = true;
+        row.push_back(textCell(any ? formatValue(frames) : "–"));
+      }
+      row.push_back(worstCell(run, ok, runHref));
+      t.rows.push_back(std::move(row));
     }
   return t;
 }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "metrics/stats.h"
+#include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "config/config.h"
 #include "vk/context.h"
@@ -132,7 +133,12 @@ json caseSummary(const CaseResult& r) {
   std::map<std::string, std::pair<double, int>> worst;  // metric -> (value, frame)
   std::vector<uint64_t> histTotal(LB_HIST_BINS, 0);
   uint64_t offscreen = 0, backfacing = 0;
-  int saturatedFrames = 0, unmetFrames = 0;
+  int saturatedFrames = 0;
+  // Schemes' own counters (SchemeInfo::counters): per frame key, the measured frames above 0.
+  std::vector<const SchemeCounter*> counters;
+  for (const Scheme* s : allSchemes())
+    for (const SchemeCounter& counter : s->info().counters) counters.push_back(&counter);
+  std::map<std::string, int> framesAbove;
   for (const FrameMetrics& m : r.metrics) {
     for (auto& [k, v] : m.values) {
       if (k.rfind("hist_", 0) == 0 || !std::isfinite(v)) continue;
@@ -140,7 +146,9 @@ json caseSummary(const CaseResult& r) {
       auto& w = worst[k];
       if (series[k].size() == 1 || v > w.first) w = {v, m.frame};
       if (k == "saturated_patches" && v > 0) ++saturatedFrames;
-      if (k == "errbound_unmet_patches" && v > 0) ++unmetFrames;
+      if (v > 0)
+        for (const SchemeCounter* counter : counters)
+          if (k == counter->frameKey) ++framesAbove[k];
     }
     if (m.hasHistogram) {
       for (size_t i = 0; i < histTotal.size(); ++i) histTotal[i] += m.histogram.bins[i];
@@ -162,8 +170,8 @@ json caseSummary(const CaseResult& r) {
   out["hist_backfacing_total"] = anyHistogram ? json(backfacing) : json(nullptr);
   if (!unavailable.empty()) out["unavailable"] = unavailable;
   out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
-  // errbound: measured frames where some drawn patch could not meet max_error_px even at level 64.
-  if (series.count("errbound_unmet_patches")) out["errbound_unmet_frames"] = unmetFrames;
+  for (const SchemeCounter* counter : counters)
+    if (series.count(counter->frameKey)) out[counter->caseKey] = framesAbove[counter->frameKey];
   json wf = json::object();
   for (const char* k : {"cracks_pixels", "cracks_analytic", "pop_mean", "err_p95_px"})
     if (worst.count(k)) wf[k] = worst[k].second;

@@ -3,10 +3,10 @@
 #include "camera/camera_path.h"
 #include "render/scheme.h"
 #include "shaders/shared.h"
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 #include "terrain/heightfield.h"
-#include "terrain/plane_fit.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/plane_fit.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 namespace lb {
 

@@ -1,4 +1,4 @@
-#include "terrain/phong_surface.h"
+#include "schemes/preprocess/phong_surface.h"
 
 namespace lb {
 

@@ -1,4 +1,4 @@
-#include "terrain/plane_fit.h"
+#include "schemes/preprocess/plane_fit.h"
 
 #include <cmath>
 

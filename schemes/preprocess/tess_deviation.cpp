@@ -1,4 +1,4 @@
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "terrain/density_map.h"
+#include "schemes/preprocess/density_map.h"
 
 #include <algorithm>
 #include <cassert>
