@@ -9,7 +9,6 @@
 #include "metrics/stats.h"
 #include "render/patch_grid.h"
 #include "render/pipeline.h"
-#include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 #include "vk/resources.h"
@@ -18,13 +17,6 @@
 namespace lb {
 
 namespace {
-
-// Mirror of the Probe block of shaders/probe.glsl (std430 push constants).
-struct ProbePush {
-  glm::mat4 viewProj;
-  glm::vec4 terrain;  // extent, level
-};
-static_assert(sizeof(ProbePush) == 64 + 16 && sizeof(ProbePush) <= LB_PUSH_CONSTANT_LIMIT, "push constant mirror");
 
 constexpr int kSlots = 2;
 constexpr VkFormat kColor = VK_FORMAT_R8G8B8A8_UNORM, kDepth = VK_FORMAT_D32_SFLOAT;
