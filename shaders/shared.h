@@ -21,6 +21,14 @@
 #define LB_MODE_HEATMAP 1
 #define LB_MODE_WIREFRAME 2
 #define LB_MODE_ERROR 3         // R32F target: screen-space geometric error in pixels
+// The modes below reach terrain.frag never or only with rasterization discarded; they are listed
+// so that lb::RenderMode (render/renderer.h) is checked against every value.
+#define LB_MODE_HISTOGRAM 4
+#define LB_MODE_DEPTH 5
+#define LB_MODE_FRONTEND 6
+
+// Push-constant blocks must fit the smallest maxPushConstantsSize Vulkan guarantees.
+#define LB_PUSH_CONSTANT_LIMIT 128
 
 // Triangle-size histogram: bin 0 is area < 1/8 px, bin k (1..13) is [2^(k-4), 2^(k-3)) px,
 // bin 14 is >= 1024 px; then off-screen (outside the frustum or crossing the near plane) and
@@ -51,16 +59,19 @@ struct FrameUniforms {
   glm::vec4 origin;     // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
 };
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 16, "std140 mirror");
+// Each push-constant mirror is pinned to its GLSL block's size (std430, as push constants are
+// laid out); tests/test_push_constants.cpp reads the same sizes back from the compiled SPIR-V.
 struct DrawPush {
   uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw
-  uint32_t pad[3];
 };
+static_assert(sizeof(DrawPush) == 4 && sizeof(DrawPush) <= LB_PUSH_CONSTANT_LIMIT, "push constant mirror");
 // Push constants of a scheme's compute preprocessing pass (shaders/*.comp define LB_COMPUTE_PASS).
 struct ComputePush {
   glm::vec4 terrain;  // extent, grid patches per side, heightfield min height, max height
   glm::vec4 params[LB_SCHEME_PARAM_VEC4S];  // the scheme's parameters, packed as in FrameUniforms
 };
-static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16, "push constant mirror");
+static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16 && sizeof(ComputePush) <= LB_PUSH_CONSTANT_LIMIT,
+              "push constant mirror");
 }  // namespace lb
 #elif defined(LB_COMPUTE_PASS)
 layout(push_constant) uniform ComputePush {

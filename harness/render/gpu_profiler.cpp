@@ -28,7 +28,9 @@ GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
   qi.queryCount = uint32_t(slots) * kTimestampsPerSlot;
-  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &timestamps_));
+  VkQueryPool pool;
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &pool));
+  timestamps_ = vk::Unique(ctx_.device, pool);
   qi.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
   qi.queryCount = uint32_t(slots);
   qi.pipelineStatistics =
@@ -38,12 +40,8 @@ GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
       VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
       VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
       VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
-  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &stats_));
-}
-
-GpuProfiler::~GpuProfiler() {
-  vkDestroyQueryPool(ctx_.device, stats_, nullptr);
-  vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
+  VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &pool));
+  stats_ = vk::Unique(ctx_.device, pool);
 }
 
 void GpuProfiler::reset(VkCommandBuffer cmd, int slot) {

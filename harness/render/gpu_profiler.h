@@ -6,6 +6,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/unique.h"
+
 namespace lb {
 
 struct Context;
@@ -24,7 +26,6 @@ struct GpuSample {
 class GpuProfiler {
  public:
   GpuProfiler(Context& ctx, int slots);
-  ~GpuProfiler();
   GpuProfiler(const GpuProfiler&) = delete;
   GpuProfiler& operator=(const GpuProfiler&) = delete;
 
@@ -43,7 +44,7 @@ class GpuProfiler {
 
  private:
   Context& ctx_;
-  VkQueryPool timestamps_ = VK_NULL_HANDLE, stats_ = VK_NULL_HANDLE;
+  vk::Unique<VkQueryPool> timestamps_, stats_;
   uint64_t mask_ = 0;
   double periodNs_ = 0;
 };

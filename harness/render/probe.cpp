@@ -1,4 +1,5 @@
-// The minimal loop: its own pipeline, descriptor and two-slot frame ring.
+// The minimal loop: its own descriptor and two-slot frame ring; its pipeline comes from the
+// renderer's builder (render/pipeline.h) with the probe's shaders.
 #include "render/probe.h"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 
 #include "metrics/stats.h"
 #include "render/patch_grid.h"
+#include "render/pipeline.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 #include "vk/resources.h"
@@ -16,176 +18,71 @@ namespace lb {
 
 namespace {
 
-struct ProbePush {
-  glm::mat4 viewProj;
-  glm::vec4 terrain;  // extent, level
-};
-
 constexpr int kSlots = 2;
 constexpr VkFormat kColor = VK_FORMAT_R8G8B8A8_UNORM, kDepth = VK_FORMAT_D32_SFLOAT;
 
-// Every Vulkan object of the probe, destroyed in one place (also when a step throws).
+// Every Vulkan object of the probe, each owned by a vk::Unique: the members built so far are
+// released when a later step throws, after the destructor has waited for the frames using them.
 struct ProbeObjects {
   Context& ctx;
+  GpuProfiler profiler;
   Image color, depth, height;
   Buffer vertices, indices;
-  VkSampler sampler = VK_NULL_HANDLE;
-  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkCommandBuffer cmd[kSlots] = {};
-  VkFence fence[kSlots] = {};
-  explicit ProbeObjects(Context& c) : ctx(c) {}
-  ~ProbeObjects() {
-    vkDeviceWaitIdle(ctx.device);
-    for (int i = 0; i < kSlots; ++i) {
-      if (fence[i]) vkDestroyFence(ctx.device, fence[i], nullptr);
-      if (cmd[i]) vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &cmd[i]);
-    }
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(ctx.device, layout, nullptr);
-    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(ctx.device, setLayout, nullptr);
-    vkDestroySampler(ctx.device, sampler, nullptr);
-    destroyBuffer(ctx, vertices);
-    destroyBuffer(ctx, indices);
-    for (Image* i : {&color, &depth, &height}) destroyImage(ctx, *i);
-  }
+  vk::Unique<VkSampler> sampler;
+  Bindings bindings;
+  vk::Unique<VkPipeline> pipeline;
+  vk::Unique<VkCommandPool> commandPool;
+  VkCommandBuffer cmd[kSlots] = {};  // released with commandPool
+  vk::Unique<VkFence> fence[kSlots];
+  explicit ProbeObjects(Context& c) : ctx(c), profiler(c, kSlots) {}
+  ~ProbeObjects() { vkQueueWaitIdle(ctx.queue); }  // no VK_CHECK: a destructor must not throw
+  ProbeObjects(const ProbeObjects&) = delete;
+  ProbeObjects& operator=(const ProbeObjects&) = delete;
 };
 
 void createPipeline(ProbeObjects& o, const ProbeOptions& opt) {
   const bool colour = opt.mode == RenderMode::Shaded, frontend = opt.mode == RenderMode::Frontend;
   const std::string stem = opt.vertexHeight ? "probe_height" : "probe";
-  VkShaderModule mods[4] = {loadShaderModule(o.ctx, stem + ".vert.spv"), loadShaderModule(o.ctx, stem + ".tesc.spv"),
-                            loadShaderModule(o.ctx, stem + "_integer.tese.spv"),
-                            colour ? loadShaderModule(o.ctx, "probe.frag.spv") : VK_NULL_HANDLE};
-  VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-                                   VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, VK_SHADER_STAGE_FRAGMENT_BIT};
-  VkPipelineShaderStageCreateInfo stages[4] = {};
-  uint32_t n = 0;
-  for (int i = 0; i < 4; ++i) {
-    if (!mods[i]) continue;
-    stages[n] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    stages[n].stage = bits[i];
-    stages[n].module = mods[i];
-    stages[n].pName = "main";
-    ++n;
-  }
-  VkVertexInputBindingDescription vb{0, sizeof(float) * 2, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription va{0, 0, VK_FORMAT_R32G32_SFLOAT, 0};
-  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  vi.vertexBindingDescriptionCount = 1;
-  vi.pVertexBindingDescriptions = &vb;
-  vi.vertexAttributeDescriptionCount = 1;
-  vi.pVertexAttributeDescriptions = &va;
-  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
-  VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
-  ts.patchControlPoints = 4;
-  VkViewport viewport{0, 0, float(opt.width), float(opt.height), 0, 1};
-  VkRect2D scissor{{0, 0}, {uint32_t(opt.width), uint32_t(opt.height)}};
-  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  vp.viewportCount = 1;
-  vp.pViewports = &viewport;
-  vp.scissorCount = 1;
-  vp.pScissors = &scissor;
-  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;  // as the renderer
-  rs.lineWidth = 1.0f;
-  rs.rasterizerDiscardEnable = frontend;
-  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
-  VkPipelineColorBlendAttachmentState att{};
-  att.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = colour ? 1 : 0;
-  cb.pAttachments = colour ? &att : nullptr;
-  VkFormat colorFormat = kColor;
-  VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  ri.colorAttachmentCount = colour ? 1 : 0;
-  ri.pColorAttachmentFormats = colour ? &colorFormat : nullptr;
-  ri.depthAttachmentFormat = frontend ? VK_FORMAT_UNDEFINED : kDepth;
-  VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &ri};
-  gi.stageCount = n;
-  gi.pStages = stages;
-  gi.pVertexInputState = &vi;
-  gi.pInputAssemblyState = &ia;
-  gi.pTessellationState = &ts;
-  gi.pViewportState = &vp;
-  gi.pRasterizationState = &rs;
-  gi.pMultisampleState = &ms;
-  gi.pDepthStencilState = &ds;
-  gi.pColorBlendState = &cb;
-  gi.layout = o.layout;
-  VkResult r = vkCreateGraphicsPipelines(o.ctx.device, VK_NULL_HANDLE, 1, &gi, nullptr, &o.pipeline);
-  for (VkShaderModule m : mods)
-    if (m) vkDestroyShaderModule(o.ctx.device, m, nullptr);
-  VK_CHECK(r);
+  TessPipelineDesc d;
+  d.layout = o.bindings.pipelineLayout;
+  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, stem + ".vert.spv"},
+              {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, stem + ".tesc.spv"},
+              {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, stem + "_integer.tese.spv"}};
+  if (colour) d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, "probe.frag.spv"});
+  d.controlPoints = 4;
+  d.width = uint32_t(opt.width);
+  d.height = uint32_t(opt.height);
+  d.rasterizerDiscard = frontend;
+  if (colour) d.colorFormat = kColor;
+  d.depthFormat = frontend ? VK_FORMAT_UNDEFINED : kDepth;
+  o.pipeline = createTessPipeline(o.ctx, d);
 }
 
 void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOptions& opt) {
   Context& ctx = o.ctx;
   auto w = uint32_t(opt.width), h = uint32_t(opt.height);
-  createImage(ctx, o.color, w, h, kColor, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-  createImage(ctx, o.depth, w, h, kDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  createImage(ctx, o.height, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
-              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  o.color = createImage(ctx, w, h, kColor, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  o.depth = createImage(ctx, w, h, kDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  o.height = createImage(ctx, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   uploadImage(ctx, o.height, terrain.h.data(), terrain.h.size() * sizeof(float));
   auto verts = gridVertices(opt.grid, terrain.extent);
   auto idx = patchIndices(opt.grid, Topology::Quad4);
-  createBufferWithData(ctx, o.vertices, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  createBufferWithData(ctx, o.indices, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
-  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VK_CHECK(vkCreateSampler(ctx.device, &si, nullptr, &o.sampler));
-  VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_ALL_GRAPHICS, nullptr};
-  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  li.bindingCount = 1;
-  li.pBindings = &b;
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &li, nullptr, &o.setLayout));
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
-  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pi.maxSets = 1;
-  pi.poolSizeCount = 1;
-  pi.pPoolSizes = &size;
-  VK_CHECK(vkCreateDescriptorPool(ctx.device, &pi, nullptr, &o.pool));
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = o.pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &o.setLayout;
-  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &ai, &o.set));
+  o.vertices = createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  o.indices = createBufferWithData(ctx, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  o.sampler = createSampler(ctx, VK_FILTER_NEAREST);
+  o.bindings = createBindings(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_ALL_GRAPHICS}},
+                              VK_SHADER_STAGE_ALL_GRAPHICS, sizeof(ProbePush));
   VkDescriptorImageInfo ii{o.sampler, o.height.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet wr{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  wr.dstSet = o.set;
+  wr.dstSet = o.bindings.set;
   wr.dstBinding = 0;
   wr.descriptorCount = 1;
   wr.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   wr.pImageInfo = &ii;
   vkUpdateDescriptorSets(ctx.device, 1, &wr, 0, nullptr);
-  VkPushConstantRange pc{VK_SHADER_STAGE_ALL_GRAPHICS, 0, sizeof(ProbePush)};
-  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = &o.setLayout;
-  pli.pushConstantRangeCount = 1;
-  pli.pPushConstantRanges = &pc;
-  VK_CHECK(vkCreatePipelineLayout(ctx.device, &pli, nullptr, &o.layout));
-  VkCommandBufferAllocateInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ci.commandPool = ctx.commandPool;
-  ci.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ci.commandBufferCount = 1;
-  for (int i = 0; i < kSlots; ++i) {
-    VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ci, &o.cmd[i]));
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(ctx.device, &fi, nullptr, &o.fence[i]));
-  }
+  o.commandPool = createCommandPool(ctx, o.cmd, kSlots);
+  for (auto& f : o.fence) f = createFence(ctx);
 }
 
 }  // namespace
@@ -199,7 +96,7 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
   ProbeObjects o(ctx);
   createResources(o, terrain, opt);
   createPipeline(o, opt);
-  GpuProfiler profiler(ctx, kSlots);
+  GpuProfiler& profiler = o.profiler;
   CameraMatrices m = cameraMatrices(pose, float(opt.width) / float(opt.height), terrain.extent);
   ProbePush push{m.proj * m.view, glm::vec4(terrain.extent, opt.level, 0, 0)};
   const uint32_t patches = uint32_t(opt.grid) * uint32_t(opt.grid);
@@ -212,7 +109,7 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
   bool busy[kSlots] = {};
   auto collect = [&](int s, bool timed) {
     if (!busy[s]) return;
-    VK_CHECK(vkWaitForFences(ctx.device, 1, &o.fence[s], VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkWaitForFences(ctx.device, 1, o.fence[s].ptr(), VK_TRUE, UINT64_MAX));
     busy[s] = false;
     GpuSample g = profiler.read(s);
     result.stats = g.stats;
@@ -262,10 +159,11 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
     vkCmdBeginRendering(cmd, &ri);
     profiler.beginStats(cmd, s);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &o.set, 0, nullptr);
-    vkCmdPushConstants(cmd, o.layout, VK_SHADER_STAGE_ALL_GRAPHICS, 0, sizeof push, &push);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.bindings.pipelineLayout, 0, 1, &o.bindings.set, 0,
+                            nullptr);
+    vkCmdPushConstants(cmd, o.bindings.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS, 0, sizeof push, &push);
     VkDeviceSize zero = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &o.vertices.buffer, &zero);
+    vkCmdBindVertexBuffers(cmd, 0, 1, o.vertices.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, o.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     uint32_t draws = 0;
     for (uint32_t first = 0; first < patches; first += perDraw, ++draws)
@@ -278,7 +176,7 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
     VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     sub.commandBufferCount = 1;
     sub.pCommandBuffers = &cmd;
-    VK_CHECK(vkResetFences(ctx.device, 1, &o.fence[s]));
+    VK_CHECK(vkResetFences(ctx.device, 1, o.fence[s].ptr()));
     VK_CHECK(vkQueueSubmit(ctx.queue, 1, &sub, o.fence[s]));
     busy[s] = true;
     timedSlot[s] = i >= opt.warmup;

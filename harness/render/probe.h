@@ -35,6 +35,14 @@ struct ProbeResult {
   uint32_t draws = 0;
 };
 
+// Mirror of the Probe push-constant block of shaders/probe.glsl (std430; checked against the
+// SPIR-V by tests/test_push_constants.cpp).
+struct ProbePush {
+  glm::mat4 viewProj;
+  glm::vec4 terrain;  // extent, level
+};
+static_assert(sizeof(ProbePush) == 64 + 16 && sizeof(ProbePush) <= 128, "push constant mirror within Vulkan's minimum");
+
 ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose& pose, const ProbeOptions& options);
 // True where the renderer's draw limits apply (Mesa lavapipe).
 bool probeNeedsSplit(const Context& ctx);

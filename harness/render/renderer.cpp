@@ -124,13 +124,14 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices or kMaxIndicesPerDraw indices.
   auto drawAll = [&](VkPipeline p) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 1, &dynOffset);
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bindings_.pipelineLayout, 0, 1, &bindings_.set, 1,
+                            &dynOffset);
+    vkCmdBindVertexBuffers(cmd, 0, 1, vertices_.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
     for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
       uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
-      DrawPush push{first, {0, 0, 0}};
-      vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+      DrawPush push{first};
+      vkCmdPushConstants(cmd, bindings_.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
                          sizeof push, &push);
       vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
     }
@@ -152,8 +153,8 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
       uint32_t last = begin + uint32_t(std::floor(end * s) - std::floor(begin * s));  // floor(s * patches) in all
       for (uint32_t first = begin; first < last; first += patchesPerDraw_) {
         uint32_t count = std::min(patchesPerDraw_, last - first);
-        DrawPush push{first, {0, 0, 0}};
-        vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+        DrawPush push{first};
+        vkCmdPushConstants(cmd, bindings_.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof push, &push);
         vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
       }
@@ -196,7 +197,7 @@ void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraP
   VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   sub.commandBufferCount = 1;
   sub.pCommandBuffers = &slot.cmd;
-  VK_CHECK(vkResetFences(ctx_.device, 1, &slot.fence));
+  VK_CHECK(vkResetFences(ctx_.device, 1, slot.fence.ptr()));
   VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &sub, slot.fence));
   slot.busy = true;
   slot.frame = frameIndex;
@@ -209,7 +210,7 @@ void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraP
 void Renderer::collect(int si) {
   Slot& slot = slots_[size_t(si)];
   if (!slot.busy) return;
-  VK_CHECK(vkWaitForFences(ctx_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX));
+  VK_CHECK(vkWaitForFences(ctx_.device, 1, slot.fence.ptr(), VK_TRUE, UINT64_MAX));
   double readStart = nowMs();
   GpuSample sample = profiler_.read(si);
   FrameResult r;

@@ -138,8 +138,8 @@ class Renderer {
 
  private:
   struct Slot {
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // released with commandPool_
+    vk::Unique<VkFence> fence;
     bool busy = false;
     int frame = 0;
     double cpuMs = 0;
@@ -151,29 +151,28 @@ class Renderer {
   void createTargets();
   void createGrid();
   void createDescriptors();
-  void destroyPipelines();
   VkPipeline pipeline(RenderMode mode, bool capture);
   void record(Slot& slot, int slotIndex, RenderMode mode, bool capture);
   void collect(int slotIndex);
   void fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod);
 
+  // Every Vulkan object below is owned by a vk::Unique (directly or through Buffer, Image and
+  // Bindings): when the constructor throws half-way, the members built so far release theirs.
   Context& ctx_;
   const Heightfield& terrain_;
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
   Image color_, errorTarget_, depth_, height_, schemeTex_, normalMap_;
-  int schemeTexChannels_ = 4;
-  SetupCosts setupCosts_;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
+  int schemeTexChannels_ = 4;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
+  SetupCosts setupCosts_;
   Buffer histogram_, readback_, vertices_, indices_, bounds_, capture_, schemeBuf_, uniforms_;
   VkDeviceSize uniformStride_ = 0;
-  VkSampler sampler_ = VK_NULL_HANDLE;
-  VkSampler linearSampler_ = VK_NULL_HANDLE;  // the normal map's
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool descPool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
-  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
-  std::map<int, VkPipeline> pipelines_;  // key: mode * 2 + capture
+  vk::Unique<VkSampler> sampler_;
+  vk::Unique<VkSampler> linearSampler_;  // the normal map's
+  Bindings bindings_;
+  std::map<int, vk::Unique<VkPipeline>> pipelines_;  // key: mode * 2 + capture
+  vk::Unique<VkCommandPool> commandPool_;
   GpuProfiler profiler_;
   std::array<Slot, kSlots> slots_{};
   int nextSlot_ = 0;

@@ -10,6 +10,8 @@
 
 namespace lb {
 
+std::atomic<int> vkFailCountdown{0};
+
 const char* vkResultName(VkResult r) {
   switch (r) {
 #define LB_CASE(x) \
@@ -264,16 +266,11 @@ void createContext(Context& ctx, const ContextOptions& options) {
   di.pEnabledFeatures = &ctx.enabledFeatures;
   VK_CHECK(vkCreateDevice(ctx.physicalDevice, &di, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
-  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pi.queueFamilyIndex = ctx.queueFamily;
-  VK_CHECK(vkCreateCommandPool(ctx.device, &pi, nullptr, &ctx.commandPool));
 }
 
 void destroyContext(Context& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);
-    vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
     vkDestroyDevice(ctx.device, nullptr);
   }
   if (ctx.messenger) {

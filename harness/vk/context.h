@@ -1,6 +1,8 @@
 #pragma once
 // Headless Vulkan: instance (optional validation layer), device chosen by name substring or
-// index, one graphics+compute queue. No surface, no swapchain.
+// index, one graphics+compute queue. No surface, no swapchain. The instance and device are the
+// roots, created and destroyed here; every object made from the device is owned by a vk::Unique
+// (vk/unique.h), which its owner must release before destroyContext.
 #include <atomic>
 #include <string>
 #include <vector>
@@ -31,7 +33,6 @@ struct Context {
   VkDevice device = VK_NULL_HANDLE;
   VkQueue queue = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;
-  VkCommandPool commandPool = VK_NULL_HANDLE;  // for one-shot uploads
   VkPhysicalDeviceProperties props{};
   VkPhysicalDeviceMemoryProperties memProps{};
   VkPhysicalDeviceFeatures enabledFeatures{};

@@ -1,5 +1,6 @@
 #include "vk/resources.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -16,44 +17,44 @@ static uint32_t findMemoryType(Context& ctx, uint32_t bits, VkMemoryPropertyFlag
   throw std::runtime_error("no Vulkan memory type with the required properties");
 }
 
-void createBuffer(Context& ctx, Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+  Buffer b;
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
   bi.usage = usage;
-  VK_CHECK(vkCreateBuffer(ctx.device, &bi, nullptr, &b.buffer));
+  VkBuffer buffer;
+  VK_CHECK(vkCreateBuffer(ctx.device, &bi, nullptr, &buffer));
+  b.buffer = vk::Unique(ctx.device, buffer);
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+  vkGetBufferMemoryRequirements(ctx.device, buffer, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits,
                                       hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                                                   : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &b.memory));
-  VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  VkDeviceMemory memory;
+  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
+  b.memory = vk::Unique(ctx.device, memory);
+  VK_CHECK(vkBindBufferMemory(ctx.device, buffer, memory, 0));
   b.size = size;
-  if (hostVisible) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+  if (hostVisible) VK_CHECK(vkMapMemory(ctx.device, memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+  return b;
 }
 
-void destroyBuffer(Context& ctx, Buffer& b) {
-  if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
-  if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
-  b = Buffer{};
-}
-
-void createBufferWithData(Context& ctx, Buffer& b, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
-  Buffer staging;
-  createBuffer(ctx, staging, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+  Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
   std::memcpy(staging.mapped, data, size_t(size));
-  createBuffer(ctx, b, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+  Buffer b = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, 0, size};
     vkCmdCopyBuffer(cmd, staging.buffer, b.buffer, 1, &region);
   });
-  destroyBuffer(ctx, staging);
+  return b;
 }
 
-void createImage(Context& ctx, Image& img, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                 VkImageAspectFlags aspect) {
+Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect) {
+  Image img;
   VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   ii.imageType = VK_IMAGE_TYPE_2D;
   ii.format = format;
@@ -64,35 +65,34 @@ void createImage(Context& ctx, Image& img, uint32_t w, uint32_t h, VkFormat form
   ii.tiling = VK_IMAGE_TILING_OPTIMAL;
   ii.usage = usage;
   ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VK_CHECK(vkCreateImage(ctx.device, &ii, nullptr, &img.image));
+  VkImage image;
+  VK_CHECK(vkCreateImage(ctx.device, &ii, nullptr, &image));
+  img.image = vk::Unique(ctx.device, image);
   VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+  vkGetImageMemoryRequirements(ctx.device, image, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &img.memory));
-  VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+  VkDeviceMemory memory;
+  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
+  img.memory = vk::Unique(ctx.device, memory);
+  VK_CHECK(vkBindImageMemory(ctx.device, image, memory, 0));
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vi.image = img.image;
+  vi.image = image;
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vi.format = format;
   vi.subresourceRange = {aspect, 0, 1, 0, 1};
-  VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &img.view));
+  VkImageView view;
+  VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
+  img.view = vk::Unique(ctx.device, view);
   img.format = format;
   img.width = w;
   img.height = h;
+  return img;
 }
 
-void destroyImage(Context& ctx, Image& img) {
-  if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
-  if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
-  if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
-  img = Image{};
-}
-
-void uploadImage(Context& ctx, Image& img, const void* data, VkDeviceSize bytes) {
-  Buffer staging;
-  createBuffer(ctx, staging, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes) {
+  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
   std::memcpy(staging.mapped, data, size_t(bytes));
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -106,16 +106,86 @@ void uploadImage(Context& ctx, Image& img, const void* data, VkDeviceSize bytes)
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_READ_BIT);
   });
-  destroyBuffer(ctx, staging);
+}
+
+vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter) {
+  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  si.magFilter = si.minFilter = filter;
+  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkSampler sampler;
+  VK_CHECK(vkCreateSampler(ctx.device, &si, nullptr, &sampler));
+  return vk::Unique(ctx.device, sampler);
+}
+
+vk::Unique<VkCommandPool> createCommandPool(Context& ctx, VkCommandBuffer* buffers, uint32_t count) {
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pi.queueFamilyIndex = ctx.queueFamily;
+  VkCommandPool raw;
+  VK_CHECK(vkCreateCommandPool(ctx.device, &pi, nullptr, &raw));
+  vk::Unique pool(ctx.device, raw);
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = raw;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = count;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, buffers));
+  return pool;
+}
+
+vk::Unique<VkFence> createFence(Context& ctx) {
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  VK_CHECK(vkCreateFence(ctx.device, &fi, nullptr, &fence));
+  return vk::Unique(ctx.device, fence);
+}
+
+Bindings createBindings(Context& ctx, const std::vector<DescriptorBinding>& bindings, VkShaderStageFlags pushStages,
+                        uint32_t pushBytes) {
+  Bindings out;
+  std::vector<VkDescriptorSetLayoutBinding> b;
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (const DescriptorBinding& d : bindings) {
+    b.push_back({d.binding, d.type, 1, d.stages, nullptr});
+    auto same = std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& s) { return s.type == d.type; });
+    if (same == sizes.end())
+      sizes.push_back({d.type, 1});
+    else
+      ++same->descriptorCount;
+  }
+  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  li.bindingCount = uint32_t(b.size());
+  li.pBindings = b.data();
+  VkDescriptorSetLayout setLayout;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &li, nullptr, &setLayout));
+  out.setLayout = vk::Unique(ctx.device, setLayout);
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = 1;
+  pi.poolSizeCount = uint32_t(sizes.size());
+  pi.pPoolSizes = sizes.data();
+  VkDescriptorPool pool;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &pi, nullptr, &pool));
+  out.pool = vk::Unique(ctx.device, pool);
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &setLayout;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &ai, &out.set));
+  VkPushConstantRange pc{pushStages, 0, pushBytes};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &pc;
+  VkPipelineLayout layout;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &pli, nullptr, &layout));
+  out.pipelineLayout = vk::Unique(ctx.device, layout);
+  return out;
 }
 
 void runOneShot(Context& ctx, const std::function<void(VkCommandBuffer)>& record) {
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = ctx.commandPool;
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
+  // Its own transient pool: the command buffer goes back with it on every exit.
   VkCommandBuffer cmd;
-  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &cmd));
+  vk::Unique<VkCommandPool> pool = createCommandPool(ctx, &cmd, 1);
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
@@ -124,13 +194,15 @@ void runOneShot(Context& ctx, const std::function<void(VkCommandBuffer)>& record
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd;
-  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  VK_CHECK(vkCreateFence(ctx.device, &fi, nullptr, &fence));
+  vk::Unique<VkFence> fence = createFence(ctx);
   VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, fence));
-  VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
-  vkDestroyFence(ctx.device, fence, nullptr);
-  vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &cmd);
+  try {
+    VK_CHECK(vkWaitForFences(ctx.device, 1, fence.ptr(), VK_TRUE, UINT64_MAX));
+  } catch (...) {
+    // The work may still run: it must end before the pool, the fence and the caller's staging go.
+    vkQueueWaitIdle(ctx.queue);
+    throw;
+  }
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
@@ -170,7 +242,7 @@ std::string shaderDir() {
   return env && *env ? env : LODBENCH_SHADER_DIR;
 }
 
-VkShaderModule loadShaderModule(Context& ctx, const std::string& name) {
+vk::Unique<VkShaderModule> loadShaderModule(Context& ctx, const std::string& name) {
   std::string path = shaderDir() + "/" + name;
   std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) throw std::runtime_error("cannot open shader " + path + " (build the project, or set LODBENCH_SHADER_DIR)");
@@ -182,7 +254,7 @@ VkShaderModule loadShaderModule(Context& ctx, const std::string& name) {
   ci.pCode = reinterpret_cast<const uint32_t*>(code.data());
   VkShaderModule m;
   VK_CHECK(vkCreateShaderModule(ctx.device, &ci, nullptr, &m));
-  return m;
+  return vk::Unique(ctx.device, m);
 }
 
 }  // namespace lb

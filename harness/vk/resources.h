@@ -1,41 +1,65 @@
 #pragma once
-// Plain structs over Vulkan objects with createX/destroyX pairs.
+// Buffers and images as owners of their Vulkan objects (vk/unique.h): move-only, released when
+// they go out of scope or are assigned {}.
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "vk/unique.h"
+
 namespace lb {
 
 struct Context;
 
+// Members in creation order, so the object is released before the memory bound to it.
 struct Buffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
+  vk::Unique<VkDeviceMemory> memory;
+  vk::Unique<VkBuffer> buffer;
   VkDeviceSize size = 0;
-  void* mapped = nullptr;  // host-visible buffers stay mapped
+  void* mapped = nullptr;  // host-visible buffers stay mapped (freeing the memory unmaps it)
 };
 
 struct Image {
-  VkImage image = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
+  vk::Unique<VkDeviceMemory> memory;
+  vk::Unique<VkImage> image;
+  vk::Unique<VkImageView> view;
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
 };
 
 // hostVisible: HOST_VISIBLE|COHERENT and mapped; otherwise DEVICE_LOCAL.
-void createBuffer(Context& ctx, Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
-void destroyBuffer(Context& ctx, Buffer& b);
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
 // Device-local buffer filled through a staging copy.
-void createBufferWithData(Context& ctx, Buffer& b, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
+Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
 
-void createImage(Context& ctx, Image& img, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                 VkImageAspectFlags aspect);
-void destroyImage(Context& ctx, Image& img);
+Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect);
 // Uploads tightly packed texels and leaves the image in SHADER_READ_ONLY_OPTIMAL.
-void uploadImage(Context& ctx, Image& img, const void* data, VkDeviceSize bytes);
+void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes);
+
+// Nearest-filtered (or linear) sampler clamped to the edge.
+vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter);
+// A pool of resettable command buffers on the context's queue family, and `count` of them
+// (released with the pool).
+vk::Unique<VkCommandPool> createCommandPool(Context& ctx, VkCommandBuffer* buffers, uint32_t count);
+vk::Unique<VkFence> createFence(Context& ctx);
+// A descriptor set layout, a pool holding one set of it, that set and a pipeline layout with one
+// push-constant range: what the renderer, the probe and a compute pass each bind.
+struct DescriptorBinding {
+  uint32_t binding;
+  VkDescriptorType type;
+  VkShaderStageFlags stages;
+};
+struct Bindings {
+  vk::Unique<VkDescriptorSetLayout> setLayout;
+  vk::Unique<VkDescriptorPool> pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // released with the pool
+  vk::Unique<VkPipelineLayout> pipelineLayout;
+};
+Bindings createBindings(Context& ctx, const std::vector<DescriptorBinding>& bindings, VkShaderStageFlags pushStages,
+                        uint32_t pushBytes);
 
 // Records with `record`, submits, waits. For set-up work only, never inside timed frames.
 void runOneShot(Context& ctx, const std::function<void(VkCommandBuffer)>& record);
@@ -48,7 +72,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
-VkShaderModule loadShaderModule(Context& ctx, const std::string& name);  // name relative to the SPIR-V dir
+vk::Unique<VkShaderModule> loadShaderModule(Context& ctx, const std::string& name);  // name relative to the SPIR-V dir
 std::string shaderDir();  // LODBENCH_SHADER_DIR env override, else the build's directory
 
 }  // namespace lb

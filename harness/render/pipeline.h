@@ -1,0 +1,44 @@
+#pragma once
+// The one place that builds a tessellation graphics pipeline, for the renderer and the probe alike,
+// so the probe's floor is measured with the renderer's fixed-function state: patch list of vec2
+// control points, no culling, dynamic rendering into an optional colour and an optional depth
+// attachment, one viewport the size of the frame.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/unique.h"
+
+namespace lb {
+
+struct Context;
+
+struct ShaderStage {
+  VkShaderStageFlagBits stage;
+  std::string spirv;  // file name in the SPIR-V directory (vk/resources.h shaderDir)
+  const VkSpecializationInfo* specialization = nullptr;
+};
+
+struct TessPipelineDesc {
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::vector<ShaderStage> stages;
+  uint32_t controlPoints = 4;
+  uint32_t width = 0, height = 0;  // viewport and scissor
+  VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;
+  bool rasterizerDiscard = false;
+  bool depthBias = false;
+  float depthBiasConstant = 0, depthBiasSlope = 0;
+  VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no colour attachment
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
+  VkPipelineColorBlendAttachmentState blend{VK_FALSE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD,
+                                            VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD, 0xf};
+  std::array<float, 4> blendConstants{};
+};
+
+// Loads the stages' modules, builds the pipeline and releases the modules (also when it throws).
+vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& desc);
+
+}  // namespace lb
