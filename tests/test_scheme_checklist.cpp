@@ -14,7 +14,7 @@
 
 #include "report/charts.h"
 #include "schemes/registry.h"
-#include "sweep/measure.h"
+#include "metrics/frame_metrics.h"
 
 using namespace lb;
 

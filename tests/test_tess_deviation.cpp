@@ -1,5 +1,5 @@
-// errbound's deviation table (terrain/tess_deviation.h): the fast table skips every edge and
-// triangle whose bound (terrain/deviation_bounds.h) cannot raise its level's maximum, and must be
+// errbound's deviation table (schemes/preprocess/tess_deviation.h): the fast table skips every edge and
+// triangle whose bound (schemes/preprocess/deviation_bounds.h) cannot raise its level's maximum, and must be
 // the oracle's table bit for bit on every kind of terrain and patch layout; and the bounds must
 // bound what the exact code computes.
 #include <gtest/gtest.h>
@@ -10,10 +10,10 @@
 #include <string>
 
 #include "dem_crop.h"
-#include "terrain/deviation_bounds.h"
+#include "schemes/preprocess/deviation_bounds.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
-#include "terrain/tess_deviation.h"
+#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 

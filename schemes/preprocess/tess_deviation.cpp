@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <thread>
 
-#include "terrain/deviation_bounds.h"
+#include "schemes/preprocess/deviation_bounds.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
 

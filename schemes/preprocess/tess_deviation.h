@@ -23,7 +23,7 @@ struct DeviationTable {
 // dev(p, k) bounds |tessellated - true height| over patch p whatever its four edge levels are,
 // as long as each is a power of two >= 2^k (errbound's edges are the max of two patches' levels).
 // Patches of 32 texels or more skip every edge and triangle whose cheap upper bound
-// (terrain/deviation_bounds.h) cannot raise its level's maximum (tessDeviationBounded); smaller
+// (schemes/preprocess/deviation_bounds.h) cannot raise its level's maximum (tessDeviationBounded); smaller
 // ones, where that does not pay, take tessDeviationReference. The same bits either way.
 DeviationTable tessDeviation(const Heightfield& hf, int grid);
 DeviationTable tessDeviationBounded(const Heightfield& hf, int grid);  // the bounds at any patch size

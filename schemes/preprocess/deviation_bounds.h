@@ -1,5 +1,5 @@
 #pragma once
-// Cheap upper bounds on the deviations tessDeviation() computes exactly (terrain/tess_deviation.h),
+// Cheap upper bounds on the deviations tessDeviation() computes exactly (schemes/preprocess/tess_deviation.h),
 // so that the table can skip every edge and triangle whose bound cannot beat its level's running
 // maximum: the maximum is exact, so the table is the same bits as computing everything.
 //

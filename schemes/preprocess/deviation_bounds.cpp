@@ -1,4 +1,4 @@
-#include "terrain/deviation_bounds.h"
+#include "schemes/preprocess/deviation_bounds.h"
 
 #include <algorithm>
 #include <cmath>
