@@ -34,12 +34,15 @@ def read_table():
 
 
 def folder_of_include(inc, rules):
-    """The folder a quoted include names, or None for a loose harness header or a system one."""
-    first = inc.split("/")[0]
-    for candidate in (first, "harness/" + first):
-        if candidate in rules:
-            return candidate
-    return None
+    """The deepest table folder a quoted include names, or None for a loose or relative header."""
+    best = None
+    for path in (inc, "harness/" + inc):
+        for r in rules:
+            if r == "harness":  # its loose headers may be included from anywhere
+                continue
+            if path.startswith(r + "/") and (best is None or len(r) > len(best)):
+                best = r
+    return best
 
 
 def main():

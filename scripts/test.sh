@@ -8,6 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/install-report-deps.sh --cmake-follows  # the report's browser test runs in ctest when these exist
+bash scripts/check-code.sh  # layers and formatting: seconds, so before the build
 start=$(date +%s)
 bash scripts/build.sh -DLODBENCH_TESTS=ON
 (cd build && ctest --output-on-failure -j 2)

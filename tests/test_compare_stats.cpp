@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "compare/significance.h"
-#include "metrics/stats.h"
+#include "stats.h"
 
 namespace lb {
 namespace {

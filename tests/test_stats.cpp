@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "metrics/stats.h"
+#include "stats.h"
 
 namespace lb {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "render/probe.h"
 #include "schemes/registry.h"
 #include "config/config.h"

@@ -7,7 +7,7 @@
 
 #include "error.h"
 #include "results/run_dir.h"
-#include "metrics/stats.h"
+#include "stats.h"
 
 namespace lb {
 

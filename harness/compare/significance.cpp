@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "metrics/stats.h"
+#include "stats.h"
 
 namespace lb {
 

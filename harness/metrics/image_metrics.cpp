@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "metrics/stats.h"
+#include "stats.h"
 
 namespace lb {
 

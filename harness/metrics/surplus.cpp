@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "camera/camera_path.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "metrics/stats.h"
+#include "stats.h"
 #include "render/patch_grid.h"
 #include "render/pipeline.h"
 #include "terrain/heightfield.h"

@@ -7,7 +7,7 @@
 #include "error.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/popping.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"

@@ -8,7 +8,7 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "schemes/registry.h"
 
 namespace lb {

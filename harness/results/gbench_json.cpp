@@ -12,7 +12,7 @@
 #include <tuple>
 
 #include "error.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "results/run_dir.h"
 #include "results/write.h"
 

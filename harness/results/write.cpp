@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "metrics/stats.h"
+#include "stats.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "config/config.h"

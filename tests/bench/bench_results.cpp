@@ -7,7 +7,7 @@
 #include "bench.h"
 #include "compare/significance.h"
 #include "metrics/image_metrics.h"
-#include "metrics/stats.h"
+#include "stats.h"
 #include "config/config.h"
 #include "results/write.h"
 

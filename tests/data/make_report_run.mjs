@@ -30,7 +30,7 @@ const erf = (x) => {  // Abramowitz-Stegun 7.1.26
 const cdf = (x, mu, sigma) => 0.5 * (1 + erf((Math.log(x) - mu) / (sigma * Math.SQRT2)));
 const round = (x, d = 4) => Number(x.toFixed(d));
 
-function percentile(v, q) {  // numpy's linear interpolation, as harness/metrics/stats.cpp
+function percentile(v, q) {  // numpy's linear interpolation, as harness/stats.cpp
   const s = [...v].sort((a, b) => a - b);
   const pos = (q / 100) * (s.length - 1), lo = Math.floor(pos), hi = Math.min(lo + 1, s.length - 1);
   return s[lo] + (s[hi] - s[lo]) * (pos - lo);
