@@ -8,7 +8,9 @@ namespace {
 
 // NaN sorts last: std::sort needs a strict weak order, and plain < on NaN breaks it (undefined
 // behaviour, in practice out-of-bounds reads), so a stray NaN frame time must not crash a run.
-bool lessNanLast(double a, double b) { return std::isnan(b) ? !std::isnan(a) : a < b; }
+bool lessNanLast(double a, double b) {
+  return std::isnan(b) ? !std::isnan(a) : a < b;
+}
 
 // values must be sorted with lessNanLast and non-empty.
 double percentileSorted(const std::vector<double>& sorted, double q) {

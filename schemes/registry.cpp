@@ -17,17 +17,9 @@ const Scheme& sphereEdgeScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
-      &uniformScheme(),
-      &sphereScheme(),
-      &interlockScheme(),
-      &sphereRingsScheme(),
-      &densityScheme(),
-      &phongScheme(),
-      &distanceScheme(),
-      &referenceScheme(),
-      &planeFitScheme(),
-      &errBoundScheme(),
-      &sphereEdgeScheme(),
+      &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
+      &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
+      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(),
   };
   return schemes;
 }

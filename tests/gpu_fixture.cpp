@@ -36,7 +36,9 @@ lb::CameraPose poseAt(glm::vec3 eye, glm::vec3 target, float fov) {
   return p;
 }
 
-lb::CameraPose overviewPose() { return poseAt({-200, 600, -200}, {500, 0, 500}); }
+lb::CameraPose overviewPose() {
+  return poseAt({-200, 600, -200}, {500, 0, 500});
+}
 
 lb::FrameResult renderOnce(lb::Renderer& r, const lb::CameraPose& pose) {
   r.submitFrame(0, pose, pose);

@@ -1,7 +1,7 @@
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "camera/camera_path.h"
 #include "error.h"
@@ -74,7 +74,8 @@ TEST(CameraPath, InterpolationHitsKeysExactly) {
 }
 
 TEST(CameraPath, TwoKeyMidpointIsLinearMidpoint) {
-  const CameraPath p = parseCameraPath(std::string(kHeader) + "1,0.2,0.4,0.1,0.6,0.2,0.9,40\n3,0.6,0.2,0.5,1.0,0.0,0.7,80\n", "two.csv");
+  const CameraPath p =
+      parseCameraPath(std::string(kHeader) + "1,0.2,0.4,0.1,0.6,0.2,0.9,40\n3,0.6,0.2,0.5,1.0,0.0,0.7,80\n", "two.csv");
   const Keyframe m = interpolate(p, 2.0);
   EXPECT_NEAR(m.eye.x, 0.4, 1e-12);
   EXPECT_NEAR(m.eye.y, 0.3, 1e-12);
@@ -178,7 +179,8 @@ TEST(CameraPath, SamplePoseConvertsAndClampsToGround) {
   const Heightfield hf = tinyTerrain();
   // Eye at the centre: 0.05 -> 5 - 5 = 0 world, below ground (10), so clamped to 10 + 0.002 * 100.
   // Second key 0.5 -> 45 world, well above the ground. Targets below ground stay unclamped.
-  const CameraPath p = parseCameraPath(std::string(kHeader) + "0,0.5,0.05,0.5,1,-0.5,1,50\n2,0.5,0.5,0.5,0,-0.5,0,70\n", "g.csv");
+  const CameraPath p =
+      parseCameraPath(std::string(kHeader) + "0,0.5,0.05,0.5,1,-0.5,1,50\n2,0.5,0.5,0.5,0,-0.5,0,70\n", "g.csv");
   const CameraPose low = samplePose(p, 10, 0, hf);
   EXPECT_FLOAT_EQ(low.eye.x, 50.0f);
   EXPECT_FLOAT_EQ(low.eye.z, 50.0f);
@@ -210,7 +212,8 @@ TEST(CameraPath, BinaryInputIsQuotedEscapedAndCut) {
 
 // The frame rate is a flag or config field, not part of the CSV: its message must not blame the file.
 TEST(CameraPath, BadFrameRateDoesNotBlameTheFile) {
-  const CameraPath p = parseCameraPath(std::string(kHeader) + "0,0.5,0.5,0.5,1,0,1,50\n2,0.5,0.5,0.5,0,0,0,70\n", "g.csv");
+  const CameraPath p =
+      parseCameraPath(std::string(kHeader) + "0,0.5,0.5,0.5,1,0,1,50\n2,0.5,0.5,0.5,0,0,0,70\n", "g.csv");
   try {
     frameCount(p, 0);
     FAIL() << "expected InputError";

@@ -6,8 +6,8 @@
 #include <set>
 
 #include "compare/run_data.h"
-#include "schemes/registry.h"
 #include "config/config.h"
+#include "schemes/registry.h"
 
 namespace lb {
 namespace {

@@ -1,8 +1,6 @@
 // The lodbench binary: --help everywhere, exit codes, and errors that name the bad input.
 #include <gtest/gtest.h>
 
-#include "cli_run.h"
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -10,12 +8,16 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
 using Out = lb::test::CliOut;
 
 // Keeps the validation layer as ctest sets it.
-Out runCli(const std::string& args) { return lb::test::lodbench(args, false); }
+Out runCli(const std::string& args) {
+  return lb::test::lodbench(args, false);
+}
 
 const std::string kSrc = LODBENCH_SOURCE_DIR;
 
@@ -126,8 +128,8 @@ TEST(Cli, AskedForValidationFailsWithoutTheLayer) {
   const std::string out = ::testing::TempDir() + "/no_layer.png";
   std::filesystem::remove(out);
   for (const std::string how : {"LODBENCH_VALIDATION=1", "LODBENCH_VALIDATION=0"}) {
-    const std::string cmd = "env " + how + " VK_LAYER_PATH=" + empty + " " + LODBENCH_BINARY +
-                            " render --path " + kSrc + "/configs/paths/horizon.csv --width 16 --height 16 --grid 2 --size 17" +
+    const std::string cmd = "env " + how + " VK_LAYER_PATH=" + empty + " " + LODBENCH_BINARY + " render --path " +
+                            kSrc + "/configs/paths/horizon.csv --width 16 --height 16 --grid 2 --size 17" +
                             (how.back() == '0' ? " --validation" : "") + " --out " + out + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     std::string text;
@@ -158,9 +160,9 @@ TEST(Cli, RenderLoadsRawTerrains) {
   std::ofstream(dir + "/t.r16", std::ios::binary) << std::string(2 * 17 * 9, '\x10');
   std::string out = dir + "/raw.png";
   std::filesystem::remove(out);
-  Out o = runCli("render --scheme uniform --param level=2 --path " + kSrc + "/configs/paths/horizon.csv --width 32 --height 16 " +
-                 "--grid 2 --terrain r16 --terrain-file " + dir + "/t.r16 --terrain-width 17 --terrain-height 9 " +
-                 "--height-scale 0.01 --out " + out);
+  Out o = runCli("render --scheme uniform --param level=2 --path " + kSrc +
+                 "/configs/paths/horizon.csv --width 32 --height 16 " + "--grid 2 --terrain r16 --terrain-file " + dir +
+                 "/t.r16 --terrain-width 17 --terrain-height 9 " + "--height-scale 0.01 --out " + out);
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_TRUE(std::filesystem::exists(out)) << o.text;
 }
@@ -168,8 +170,9 @@ TEST(Cli, RenderLoadsRawTerrains) {
 TEST(Cli, RenderWritesAPng) {
   std::string out = ::testing::TempDir() + "/cli_frame.png";
   std::filesystem::remove(out);
-  Out o = runCli("render --scheme uniform --param level=4 --path " + kSrc +
-                 "/configs/paths/horizon.csv --frame 3 --width 96 --height 64 --grid 8 --size 65 --heatmap --out " + out);
+  Out o =
+      runCli("render --scheme uniform --param level=4 --path " + kSrc +
+             "/configs/paths/horizon.csv --frame 3 --width 96 --height 64 --grid 8 --size 65 --heatmap --out " + out);
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_NE(o.text.find("64 patches"), std::string::npos) << o.text;
   std::ifstream f(out, std::ios::binary);

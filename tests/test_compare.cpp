@@ -219,7 +219,9 @@ TEST(Compare, FramesAreNotSamplesNoFalseAlarmFromOneDisturbedRun) {
 
   r = compareRuns(rounds("fas_ra", {1.0, 1.4, 1.2}), rounds("fas_rb", {1.4, 1.2, 1.45}), {});
   EXPECT_GT(mannWhitneyU(loadRounds(writeRounds("fas_ra", {1.0, 1.4, 1.2}))[0].cases["x"].gpuMs,
-                         loadRounds(writeRounds("fas_rb", {1.4, 1.2, 1.45}))[0].cases["x"].gpuMs).z, 0);
+                         loadRounds(writeRounds("fas_rb", {1.4, 1.2, 1.45}))[0].cases["x"].gpuMs)
+                .z,
+            0);
   EXPECT_GT(only(r).timing.p, 0.05);
   EXPECT_EQ(only(r).timing.verdict, TimingVerdict::Unchanged);
 }
@@ -323,7 +325,8 @@ TEST(Compare, SignificantSlowdownUnderTheThresholdIsSaidSo) {
   ASSERT_LT(only(r).timing.p, ci.alpha);
   EXPECT_EQ(r.exitCode(), 0);
   std::string md = verdictMarkdown(r);
-  EXPECT_NE(md.find("# lodbench compare: no regression (1 cases); GPU time ratio 1.56x, p = "), std::string::npos) << md;
+  EXPECT_NE(md.find("# lodbench compare: no regression (1 cases); GPU time ratio 1.56x, p = "), std::string::npos)
+      << md;
   EXPECT_NE(md.find(": slower, within the threshold (2x)\n"), std::string::npos) << md;
   EXPECT_NE(md.find("| **1.560x** ["), std::string::npos) << md;
   EXPECT_EQ(md.find("unchanged"), std::string::npos) << md;
@@ -393,8 +396,8 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   auto other = writeRounds("cli_other", {1.0, 1.01, 0.99}, runContext("llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 24.0"));
   o = runCli("compare " + base + " " + other + " --require-exact");
   EXPECT_EQ(o.code, 2) << o.text;
-  EXPECT_NE(o.text.find("--require-exact: counters cannot be compared: context.driver_info differs"),
-            std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("--require-exact: counters cannot be compared: context.driver_info differs"), std::string::npos)
+      << o.text;
   o = runCli("compare " + base + " " + other);
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_NE(o.text.find("NOT CHECKED: exact counters"), std::string::npos) << o.text;

@@ -5,9 +5,9 @@
 #include <map>
 #include <set>
 
+#include "config/config.h"
 #include "error.h"
 #include "schemes/registry.h"
-#include "config/config.h"
 
 using namespace lb;
 
@@ -49,7 +49,8 @@ TEST(Config, CartesianProductOfParametersPathsAndTerrains) {
     "terrains": [{"type": "procedural", "seed": [1, 2, 3]}],
     "resolutions": [[64, 64], [128, 64]],
     "schemes": [{"name": "sphere", "params": {"tri_size": [1, 2]}}, "uniform"]
-  })", "t.json", kBase);
+  })",
+                         "t.json", kBase);
   auto cases = expandCases(c);
   EXPECT_EQ(cases.size(), 3u * 2u * 2u * (2u + 1u));
   std::set<std::string> ids;
@@ -62,7 +63,8 @@ TEST(Config, GridsMakeOneCasePerGridWithTheGridInIdAndDigest) {
   const char* one = R"({"name": "t", "paths": ["paths/flyover.csv"], "grid": 64, "schemes": ["sphere"]})";
   Config c1 = parseConfig(one, "t.json", kBase);
   Config c = parseConfig(R"({"name": "t", "paths": ["paths/flyover.csv"], "grids": [64, 128],
-    "schemes": ["sphere", "uniform"]})", "t.json", kBase);
+    "schemes": ["sphere", "uniform"]})",
+                         "t.json", kBase);
   auto cases = expandCases(c);
   ASSERT_EQ(cases.size(), 4u);
   EXPECT_EQ(cases[0].grid, 64);
@@ -75,14 +77,19 @@ TEST(Config, GridsMakeOneCasePerGridWithTheGridInIdAndDigest) {
   EXPECT_EQ(single[0].id, "sphere_proc1024s1_flyover_320x180");
   EXPECT_EQ(single[0].digest, cases[0].digest);
   EXPECT_NE(errorOf(R"({"name": "t", "paths": ["paths/flyover.csv"], "grid": 64, "grids": [64],
-    "schemes": ["sphere"]})").find("/grids"), std::string::npos);
+    "schemes": ["sphere"]})")
+                .find("/grids"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"name": "t", "paths": ["paths/flyover.csv"], "grids": [64, 64],
-    "schemes": ["sphere"]})").find("field '/grids/1': grid listed twice"), std::string::npos);
+    "schemes": ["sphere"]})")
+                .find("field '/grids/1': grid listed twice"),
+            std::string::npos);
 }
 
 TEST(Config, ErrorsNameFileLineAndField) {
-  std::string e = errorOf("{\n  \"name\": \"x\",\n  \"paths\": [\"paths/flyover.csv\"],\n  \"grid\": \"big\",\n"
-                          "  \"schemes\": [\"sphere\"]\n}");
+  std::string e = errorOf(
+      "{\n  \"name\": \"x\",\n  \"paths\": [\"paths/flyover.csv\"],\n  \"grid\": \"big\",\n"
+      "  \"schemes\": [\"sphere\"]\n}");
   EXPECT_NE(e.find("bad.json:4"), std::string::npos) << e;
   EXPECT_NE(e.find("/grid"), std::string::npos) << e;
   EXPECT_NE(e.find("expected a number"), std::string::npos) << e;
@@ -123,8 +130,9 @@ TEST(Config, MalformedInputsAreRejectedClearly) {
 }
 
 TEST(Config, FieldLineIsReported) {
-  std::string e = errorOf("{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [\n  \"sphere\",\n"
-                          "  {\"name\": \"uniform\",\n   \"params\": {\"level\": 99}}\n ]\n}");
+  std::string e = errorOf(
+      "{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [\n  \"sphere\",\n"
+      "  {\"name\": \"uniform\",\n   \"params\": {\"level\": 99}}\n ]\n}");
   EXPECT_NE(e.find("bad.json:6"), std::string::npos) << e;
   EXPECT_NE(e.find("[1, 64]"), std::string::npos) << e;
 }
@@ -140,19 +148,22 @@ TEST(Config, MissingFile) {
 
 // Last-wins duplicate keys hid typos; now the second occurrence is named.
 TEST(Config, DuplicateKeysAreRejectedWithTheirLine) {
-  std::string e = errorOf("{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [{\"name\": \"sphere\",\n"
-                          "   \"params\": {\"tri_size\": 2,\n  \"tri_size\": 3}}]\n}");
+  std::string e = errorOf(
+      "{\n \"paths\": [\"paths/flyover.csv\"],\n \"schemes\": [{\"name\": \"sphere\",\n"
+      "   \"params\": {\"tri_size\": 2,\n  \"tri_size\": 3}}]\n}");
   EXPECT_NE(e.find("bad.json:5"), std::string::npos) << e;
   EXPECT_NE(e.find("'/schemes/0/params/tri_size': duplicate key"), std::string::npos) << e;
   // The same key in two different objects is fine.
-  EXPECT_EQ(errorOf("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"sphere\"}, {\"name\": \"uniform\"}]}"),
-            "");
+  EXPECT_EQ(
+      errorOf("{\"paths\": [\"paths/flyover.csv\"], \"schemes\": [{\"name\": \"sphere\"}, {\"name\": \"uniform\"}]}"),
+      "");
 }
 
 // A path CSV is parsed with the config, so a malformed one stops the run before any case.
 TEST(Config, CameraPathErrorsAreFoundAtConfigTime) {
   const std::string dir = ::testing::TempDir();
-  std::ofstream(dir + "/broken.csv") << "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov\n0,0,0,0,1,0,1,60\n1,oops,0,0,1,0,1,60\n";
+  std::ofstream(dir + "/broken.csv")
+      << "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov\n0,0,0,0,1,0,1,60\n1,oops,0,0,1,0,1,60\n";
   try {
     parseConfig("{\"paths\": [\"broken.csv\"],\n \"schemes\": [\"sphere\"]}", "c.json", dir);
     FAIL() << "expected InputError";

@@ -42,7 +42,8 @@ lb::TerrainSpec pngSpec(const std::string& file) {
 // stb_image allocates what an IDAT chunk's length claims before reading it: a 72-byte file took
 // 30 s (timeout) and a 112-byte one asked for 2 GiB (out of memory) in the long fuzz runs.
 TEST(FuzzRegressions, PngChunkPastTheEndIsRefusedBeforeDecoding) {
-  for (const char* name : {"png16/idat-chunk-claims-1.3gb-past-the-end.png", "png16/idat-chunk-claims-1.2gb-past-the-end.png"}) {
+  for (const char* name :
+       {"png16/idat-chunk-claims-1.3gb-past-the-end.png", "png16/idat-chunk-claims-1.2gb-past-the-end.png"}) {
     const std::string msg = decodeError(pngSpec(name), readRegression(name));
     EXPECT_NE(msg.find(name), std::string::npos) << msg;
     EXPECT_NE(msg.find("past the end of the file"), std::string::npos) << msg;

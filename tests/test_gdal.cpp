@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "error.h"
 #include "config/config.h"
+#include "error.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/heightfield.h"
 
@@ -23,8 +23,8 @@
 
 #include "dem_crop.h"
 #include "input_error.h"
-#include "sha256.h"
 #include "results/write.h"
+#include "sha256.h"
 #include "terrain/generators.h"
 #endif
 

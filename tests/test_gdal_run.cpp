@@ -44,7 +44,8 @@ void writeCropTiff(const std::string& out) {
 
 std::string config(const std::string& terrain) {
   return R"({"name": "crop", "resolution": [96, 54], "grid": 8, "fps": 10, "warmup_frames": 0, "max_frames": 6,
-  "terrain": )" + terrain + R"(, "paths": [")" LODBENCH_SOURCE_DIR R"(/configs/paths/lowalt.csv"],
+  "terrain": )" +
+         terrain + R"(, "paths": [")" LODBENCH_SOURCE_DIR R"(/configs/paths/lowalt.csv"],
   "schemes": ["sphere", {"name": "errbound", "params": {"max_error_px": 2}}], "measure": {"every": 3}})";
 }
 
@@ -60,9 +61,11 @@ TEST(GdalRun, CropAsGeoTiffGivesTheCountersAndErrorsOfTheCropAsHgt) {
   writeCropTiff(dir + "/crop.tif");
   std::ofstream(dir + "/hgt.json") << config(R"({"type": "hgt", "file": ")" + lbtest::demCrop().file +
                                              R"(", "extent": 54000, "height_scale": 5})");
-  std::ofstream(dir + "/gdal.json") << config(R"({"type": "gdal", "file": "crop.tif", "extent": 54000, "height_scale": 5})");
+  std::ofstream(dir + "/gdal.json") << config(
+      R"({"type": "gdal", "file": "crop.tif", "extent": 54000, "height_scale": 5})");
   for (const char* name : {"hgt", "gdal"}) {
-    lb::test::CliOut o = lb::test::lodbench(std::string("run ") + dir + "/" + name + ".json --out " + dir + "/" + name + " -q", false);
+    lb::test::CliOut o =
+        lb::test::lodbench(std::string("run ") + dir + "/" + name + ".json --out " + dir + "/" + name + " -q", false);
     ASSERT_EQ(o.code, 0) << o.text;
   }
   std::vector<nlohmann::json> hgt, gdal;

@@ -5,21 +5,20 @@
 // the file with LODBENCH_UPDATE_IMAGE_HASHES=1 and says why in its commit.
 // The hashes are of lavapipe's rasterisation (the CI device); another driver draws other bits.
 #include <gtest/gtest.h>
+#include <stb/stb_image.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-#include <stb/stb_image.h>
-
 #include "camera/camera_path.h"
-#include "sha256.h"
+#include "config/config.h"
 #include "render/scheme.h"
 #include "schemes/registry.h"
-#include "config/config.h"
+#include "sha256.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -68,17 +67,22 @@ TEST(ImageHashes, EverySchemeAtThreePosesOfEveryShippedPathIsUnchanged) {
     const int mid = n / 2;
     json schemes = json::array();
     for (const Scheme* s : allSchemes()) schemes.push_back(s->info().name);
-    json cfg = {{"name", "hashes"},
-                {"resolution", {96, 54}},
-                {"grid", 4},
-                {"fps", kFps},
-                {"warmup_frames", 0},
-                {"repetitions", 1},
-                {"terrain", {{"type", "procedural"}, {"size", 65}, {"seed", 7}, {"extent", 1000}, {"height_scale", 150}}},
-                {"paths", {"paths/" + path}},
-                {"schemes", schemes},
-                {"measure", {{"every", 0}}},
-                {"images", {{"frames", {0, mid, n - 1}}, {"modes", {"shaded", "heatmap", "error"}}, {"resolution", {96, 54}}, {"worst", false}}}};
+    json cfg = {
+        {"name", "hashes"},
+        {"resolution", {96, 54}},
+        {"grid", 4},
+        {"fps", kFps},
+        {"warmup_frames", 0},
+        {"repetitions", 1},
+        {"terrain", {{"type", "procedural"}, {"size", 65}, {"seed", 7}, {"extent", 1000}, {"height_scale", 150}}},
+        {"paths", {"paths/" + path}},
+        {"schemes", schemes},
+        {"measure", {{"every", 0}}},
+        {"images",
+         {{"frames", {0, mid, n - 1}},
+          {"modes", {"shaded", "heatmap", "error"}},
+          {"resolution", {96, 54}},
+          {"worst", false}}}};
     Config c = parseConfig(cfg.dump(), "hashes.json", kConfigs);
     fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_image_hashes_" + std::to_string(getpid()));
     fs::remove_all(dir);
@@ -115,6 +119,7 @@ TEST(ImageHashes, EverySchemeAtThreePosesOfEveryShippedPathIsUnchanged) {
     }
   for (auto& [path, images] : got.items())
     for (auto& [name, hash] : images.items())
-      if (!want.contains(path) || !want[path].contains(name)) ADD_FAILURE() << path << " " << name << ": new image, not pinned";
+      if (!want.contains(path) || !want[path].contains(name))
+        ADD_FAILURE() << path << " " << name << ": new image, not pinned";
   EXPECT_EQ(differ, 0);
 }

@@ -143,8 +143,10 @@ TEST_P(GroundTruthPaths, ReferenceSchemeIsWithin40DbOfTheRayCastOnEveryMeasuredF
     ++n;
   }
   EXPECT_GT(n, 10);
-  std::printf("[ground truth] %s: %d frames, reference vs ray cast PSNR mean %.1f dB, worst %.1f dB (frame %d), "
-              "largest fraction over 16: %.5f\n", name, n, sum / n, worst, worstFrame, worstFrac);
+  std::printf(
+      "[ground truth] %s: %d frames, reference vs ray cast PSNR mean %.1f dB, worst %.1f dB (frame %d), "
+      "largest fraction over 16: %.5f\n",
+      name, n, sum / n, worst, worstFrame, worstFrac);
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedPaths, GroundTruthPaths, ::testing::Values("flyover", "lowalt", "horizon"));

@@ -1,24 +1,23 @@
 // Images for people: sky background, images.resolution with the case's own
 // tessellation, worst frames always drawn, readable wireframes, and no effect on what is measured.
 #include <gtest/gtest.h>
+#include <stb/stb_image.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 
-#include <nlohmann/json.hpp>
-#include <stb/stb_image.h>
-
+#include "config/config.h"
 #include "error.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "metrics/raycast_shade.h"
 #include "render/image_io.h"
+#include "replay/case_images.h"
 #include "report/report_tables.h"
 #include "report/run_data.h"
-#include "replay/case_images.h"
-#include "config/config.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -67,7 +66,7 @@ TEST(Images, SizeFollowsTheCaseAspectRatioAndFramesAreListedOnce) {
   ImageRequest r;  // 640 x 360
   EXPECT_EQ(imageSize(320, 180, r), std::make_pair(640, 360));
   EXPECT_EQ(imageSize(1920, 1080, r), std::make_pair(640, 360));
-  EXPECT_EQ(imageSize(64, 48, r), std::make_pair(640, 480));    // 4:3 covers 640 x 360
+  EXPECT_EQ(imageSize(64, 48, r), std::make_pair(640, 480));  // 4:3 covers 640 x 360
   EXPECT_EQ(imageSize(100, 200, r), std::make_pair(640, 1280));
   r.frames = {1, -1, 3};
   json worst = {{"cracks_pixels", 0}, {"pop_mean", 6}, {"err_p95_px", 3}, {"cracks_analytic", 0}};
@@ -114,7 +113,8 @@ TEST_F(ImageRender, LargerImagesKeepTheCaseTessellation) {
     EXPECT_EQ(rw.stats.clipInvocations, rb.stats.clipInvocations) << "one frame's triangles, not two";
     EXPECT_EQ(rw.stats.tesInvocations, rb.stats.tesInvocations);
     long differ = 0;
-    for (size_t i = 0; i < pw.size(); i += 4) differ += pw[i] != pb[i] || pw[i + 1] != pb[i + 1] || pw[i + 2] != pb[i + 2];
+    for (size_t i = 0; i < pw.size(); i += 4)
+      differ += pw[i] != pb[i] || pw[i + 1] != pb[i + 1] || pw[i + 2] != pb[i + 2];
     EXPECT_GT(differ, 0) << "lines drawn";
     EXPECT_LT(differ, long(pw.size() / 4)) << "the shaded frame shows between the lines";
   }
@@ -133,15 +133,18 @@ TEST_F(ImageRender, LargerImagesKeepTheCaseTessellation) {
 // --- A small run with images of every mode --------------------------------------------------
 
 static Config smallConfig(bool images) {
-  std::string text = R"({
+  std::string text =
+      R"({
     "name": "img", "resolution": [96, 54], "grid": 8, "fps": 10, "warmup_frames": 1, "max_frames": 6,
     "terrain": {"type": "procedural", "size": 65, "seed": 3},
     "paths": ["paths/horizon.csv"],
     "schemes": [{"name": "uniform", "params": {"level": 3}}, {"name": "sphere", "params": {"tri_size": 4}}],
     "measure": {"every": 2, "passes": ["error", "image", "cracks", "popping"]},
-    "images": )" + std::string(images ? R"({"frames": [1], "modes": ["shaded", "heatmap", "wireframe", "error", "cracks"],
+    "images": )" +
+      std::string(images ? R"({"frames": [1], "modes": ["shaded", "heatmap", "wireframe", "error", "cracks"],
                                              "resolution": [192, 108]})"
-                                      : R"({"frames": [], "modes": []})") + "}";
+                         : R"({"frames": [], "modes": []})") +
+      "}";
   return parseConfig(text, "img.json", kBase);
 }
 

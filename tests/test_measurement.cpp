@@ -1,8 +1,8 @@
 // Measurement passes: triangle-size histogram totals and screen-space error maps.
 #include <cmath>
 
-#include "gpu_fixture.h"
 #include "config/config.h"
+#include "gpu_fixture.h"
 #include "replay/measure.h"
 #include "results/write.h"
 
@@ -84,13 +84,14 @@ TEST_F(Measurement, NothingOnScreenGivesNullWithAReason) {
   ReferenceCache refs;
   const CameraPose sky = lbtest::poseAt({500, 400, 500}, {500, 2000, 3000});
   const CameraPose ground = lbtest::overviewPose();
-  FrameMetrics m = measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 0, sky, sky);
+  FrameMetrics m =
+      measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 0, sky, sky);
   ASSERT_TRUE(m.hasHistogram);
   EXPECT_EQ(m.histogram.total(), m.histogram.offscreen + m.histogram.backfacing) << "premise: nothing on screen";
   EXPECT_NE(m.unavailable.at("error").find("no terrain pixel"), std::string::npos);
   EXPECT_NE(m.unavailable.at("triangle_sizes").find("no front-facing triangle"), std::string::npos);
-  FrameMetrics g = measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 1,
-                                ground, ground);
+  FrameMetrics g =
+      measureFrame(gpu(), r, *findScheme("uniform"), r.params(), testTerrain(), "t", spec, refs, 1, ground, ground);
   EXPECT_TRUE(g.unavailable.empty()) << "a frame with terrain on screen has every value";
   CaseResult cr;
   for (int f : {0, 1}) cr.frames.push_back(FrameResult{f, 1.0, 1.0, {}});

@@ -104,9 +104,11 @@ TEST(NormalMap, FilteredGradientEqualsThePerPixelCentralDifference) {
   nm.texels[k] = floatToHalf(-gx + 1.0f);
   nm.texels[k + 1] = floatToHalf(-gz + 1.0f);
   EXPECT_GT(glm::length(sampleNormalMap(nm, hf.extent, tx * texel + 0.3f * texel, tz * texel) -
-                        heightNormal(hf, tx * texel + 0.3f * texel, tz * texel)), 0.1f);
+                        heightNormal(hf, tx * texel + 0.3f * texel, tz * texel)),
+            0.1f);
   EXPECT_LT(glm::length(sampleNormalMap(nm, hf.extent, (tx + 1.5f) * texel, tz * texel) -
-                        heightNormal(hf, (tx + 1.5f) * texel, tz * texel)), 1e-3f);
+                        heightNormal(hf, (tx + 1.5f) * texel, tz * texel)),
+            1e-3f);
 }
 
 // ---- GPU: the new shader against the old one, same geometry.
@@ -154,8 +156,10 @@ struct OldNew {
   Renderer oldR, newR;
   int w, h;
   OldNew(const Heightfield& hf, int width, int height, int grid)
-      : oldR(lbtest::gpu(), hf, oldSettings(width, height, grid)), newR(lbtest::gpu(), hf, {width, height, grid}),
-        w(width), h(height) {
+      : oldR(lbtest::gpu(), hf, oldSettings(width, height, grid)),
+        newR(lbtest::gpu(), hf, {width, height, grid}),
+        w(width),
+        h(height) {
     oldR.setScheme(*findScheme("uniform"), {});
     newR.setScheme(*findScheme("uniform"), {});
   }

@@ -3,10 +3,10 @@
 // scheme give exactly zero, a jump in LOD gives a visible difference.
 #include <cmath>
 
+#include "config/config.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "metrics/popping.h"
-#include "config/config.h"
 #include "replay/measure.h"
 #include "results/write.h"
 

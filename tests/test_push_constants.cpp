@@ -2,6 +2,8 @@
 // offsets plus the last member's size) equals the size of the C++ struct that fills it, and fits
 // the 128 bytes every Vulkan device offers. The C++ sizes are pinned by static_asserts next to
 // the structs; this closes the loop with the GLSL side, which has no static_assert.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
@@ -12,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "render/probe.h"
 #include "shaders/shared.h"
 #include "vk/resources.h"
@@ -22,9 +22,22 @@ namespace {
 
 // The few SPIR-V opcodes, decorations and storage classes the sizes need (SPIR-V spec, 3.x).
 enum : uint32_t {
-  OpName = 5, OpTypeInt = 21, OpTypeFloat = 22, OpTypeVector = 23, OpTypeMatrix = 24, OpTypeArray = 28,
-  OpTypeStruct = 30, OpTypePointer = 32, OpConstant = 43, OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72,
-  DecorationArrayStride = 6, DecorationMatrixStride = 7, DecorationOffset = 35, StorageClassPushConstant = 9,
+  OpName = 5,
+  OpTypeInt = 21,
+  OpTypeFloat = 22,
+  OpTypeVector = 23,
+  OpTypeMatrix = 24,
+  OpTypeArray = 28,
+  OpTypeStruct = 30,
+  OpTypePointer = 32,
+  OpConstant = 43,
+  OpVariable = 59,
+  OpDecorate = 71,
+  OpMemberDecorate = 72,
+  DecorationArrayStride = 6,
+  DecorationMatrixStride = 7,
+  DecorationOffset = 35,
+  StorageClassPushConstant = 9,
 };
 
 struct Module {
@@ -48,8 +61,7 @@ struct Module {
         return constants.at(t[3]) * arrayStride.at(id);
       case OpTypeStruct: {
         uint32_t end = 0;
-        for (uint32_t m = 0; m + 2 < t.size(); ++m)
-          end = std::max(end, offset.at({id, m}) + size(t[2 + m], id, m));
+        for (uint32_t m = 0; m + 2 < t.size(); ++m) end = std::max(end, offset.at({id, m}) + size(t[2 + m], id, m));
         return end;
       }
     }
@@ -68,7 +80,8 @@ Module parse(const std::string& path) {
     i += n;
     if (op == OpName) m.names[ins[1]] = reinterpret_cast<const char*>(&ins[2]);
     if (op >= OpTypeInt && op <= OpTypeStruct) m.types[ins[1]] = {op};
-    if (op >= OpTypeInt && op <= OpTypeStruct) m.types[ins[1]].insert(m.types[ins[1]].end(), ins.begin() + 1, ins.end());
+    if (op >= OpTypeInt && op <= OpTypeStruct)
+      m.types[ins[1]].insert(m.types[ins[1]].end(), ins.begin() + 1, ins.end());
     if (op == OpConstant) m.constants[ins[2]] = ins[3];
     if (op == OpTypePointer && ins[2] == StorageClassPushConstant) m.pointee[ins[1]] = ins[3];
     if (op == OpVariable && ins[3] == StorageClassPushConstant) m.pushPointers.insert(ins[1]);

@@ -3,6 +3,7 @@
 // brute-force intersection of every cell (the max-mipmap may skip nothing it must not), and its
 // persistent cache (harness/replay/measure.h ReferenceCache).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -10,8 +11,6 @@
 #include <filesystem>
 #include <set>
 #include <thread>
-
-#include <unistd.h>
 
 #include "metrics/raycast.h"
 #include "render/renderer.h"
@@ -161,8 +160,10 @@ TEST(Raycast, MatchesThePolylineRayCastOfTheErrorValidation) {
       worstDist = std::max(worstDist, std::abs(double(rd) - eyeDist) / eyeDist);
       ++compared;
     }
-  std::printf("[raycast] %d rays vs polyline: worst hit distance %.2e units, worst relative depth %.2e, %d coverage "
-              "disagreements\n", compared, worstPos, worstDist, coverage);
+  std::printf(
+      "[raycast] %d rays vs polyline: worst hit distance %.2e units, worst relative depth %.2e, %d coverage "
+      "disagreements\n",
+      compared, worstPos, worstDist, coverage);
   EXPECT_GT(compared, 2000);
   // Both solve the same linear pieces in double: 1e-6 units on a 1000-unit terrain is rounding only.
   EXPECT_LT(worstPos, 1e-6);

@@ -18,8 +18,8 @@
 #include "report/charts.h"
 #include "report/pareto.h"
 #include "report/report.h"
-#include "report_fixture.h"
 #include "report/run_data.h"
+#include "report_fixture.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -118,7 +118,8 @@ TEST(ReportWrite, MarkdownHasContextStabilityProblemsAndEveryCase) {
                      "](../images/phong-tri_size4_proc129s1_lowalt_96x54_f" + std::to_string(worst) + "_shaded.png)"),
             std::string::npos)
       << row;
-  EXPECT_EQ(tableRow(md, "| interlock | flyover |"), "| interlock | flyover | 0 / 0 / 1 | – | – | – | – | – | – | – | – |");
+  EXPECT_EQ(tableRow(md, "| interlock | flyover |"),
+            "| interlock | flyover | 0 / 0 / 1 | – | – | – | – | – | – | – | – |");
 
   EXPECT_NE(md.find("| `phong-tri_size8_proc129s1_lowalt_96x54` | phong | tri_size=8 | lowalt | failed | "
                     "vkQueueSubmit: VK_ERROR_DEVICE_LOST at frame 5 |"),

@@ -83,7 +83,8 @@ ReportRun makeRun(std::vector<ReportCase> cases) {
   ReportRun run;
   run.cases = std::move(cases);
   for (auto& c : run.cases) {
-    if (std::find(run.schemes.begin(), run.schemes.end(), c.scheme) == run.schemes.end()) run.schemes.push_back(c.scheme);
+    if (std::find(run.schemes.begin(), run.schemes.end(), c.scheme) == run.schemes.end())
+      run.schemes.push_back(c.scheme);
     if (std::find(run.scenarios.begin(), run.scenarios.end(), c.scenario) == run.scenarios.end())
       run.scenarios.push_back(c.scenario);
   }
@@ -115,10 +116,14 @@ const Chart* findChart(const std::vector<Chart>& charts, const std::string& id) 
 ReportRun speedRun(bool withErrbound) {
   std::vector<ReportCase> cases;
   for (std::string path : {"flyover", "lowalt"}) {
-    for (int level : {2, 8, 32}) cases.push_back(makeCase("uniform", {{"level", level}}, path, 320, 180, 32, 0.2 * level, 2000.0 * level * level, 8.0 / level));
-    for (double t : {2.0, 4.0, 8.0}) cases.push_back(makeCase("sphere", {{"tri_size", t}}, path, 320, 180, 32, 4 / t, 90000 / t, 0.1 * t));
+    for (int level : {2, 8, 32})
+      cases.push_back(makeCase("uniform", {{"level", level}}, path, 320, 180, 32, 0.2 * level, 2000.0 * level * level,
+                               8.0 / level));
+    for (double t : {2.0, 4.0, 8.0})
+      cases.push_back(makeCase("sphere", {{"tri_size", t}}, path, 320, 180, 32, 4 / t, 90000 / t, 0.1 * t));
     if (withErrbound)
-      for (double b : {0.5, 1.0, 2.0}) cases.push_back(makeCase("errbound", {{"max_error_px", b}}, path, 320, 180, 32, 3 / b, 70000 / b, 0.3 * b));
+      for (double b : {0.5, 1.0, 2.0})
+        cases.push_back(makeCase("errbound", {{"max_error_px", b}}, path, 320, 180, 32, 3 / b, 70000 / b, 0.3 * b));
   }
   return makeRun(cases);
 }
@@ -126,7 +131,8 @@ ReportRun speedRun(bool withErrbound) {
 }  // namespace
 
 TEST(ReportAxes, LinearDomainsArePaddedAndRound) {
-  for (auto& v : std::vector<std::vector<double>>{{0.93, 1.4, 2.71}, {0, 10}, {5, 5}, {-3.2, 4.1}, {1001, 1009.5}, {0.0213, 0.0297}})
+  for (auto& v : std::vector<std::vector<double>>{
+           {0.93, 1.4, 2.71}, {0, 10}, {5, 5}, {-3.2, 4.1}, {1001, 1009.5}, {0.0213, 0.0297}})
     expectPrintable(niceDomain(v), v, json(v).dump());
   AxisDomain d = niceDomain({0.93, 1.4, 2.71});
   EXPECT_EQ(d.type, "linear");
@@ -147,7 +153,8 @@ TEST(ReportAxes, LogPastOneAndAHalfDecades) {
   EXPECT_EQ(niceDomain({100, 200}, AxisKind::Log).type, "log");
   EXPECT_EQ(niceDomain({-1, 200}, AxisKind::Log).type, "linear");
   // GPU time with the reference scheme at 20x the others, triangles over three decades, error px.
-  for (auto& v : std::vector<std::vector<double>>{{0.41, 0.55, 9.8}, {1800, 52000, 2.1e6}, {0.04, 0.9, 3.3}, {100, 200}})
+  for (auto& v :
+       std::vector<std::vector<double>>{{0.41, 0.55, 9.8}, {1800, 52000, 2.1e6}, {0.04, 0.9, 3.3}, {100, 200}})
     expectPrintable(niceDomain(v, v.size() == 2 ? AxisKind::Log : AxisKind::Auto), v, json(v).dump());
   AxisDomain tri = niceDomain({1800, 52000, 2.1e6});
   EXPECT_EQ(tri.type, "log");
@@ -158,7 +165,8 @@ TEST(ReportAxes, LogPastOneAndAHalfDecades) {
   EXPECT_EQ(scale["domain"], json({tri.lo, tri.hi}));
   EXPECT_EQ(scale["nice"], false);
   EXPECT_EQ(axisJson(tri)["values"], json(tri.ticks));
-  EXPECT_NE(positionEncoding("triangles", "triangles", tri)["title"].get<std::string>().find("(log)"), std::string::npos);
+  EXPECT_NE(positionEncoding("triangles", "triangles", tri)["title"].get<std::string>().find("(log)"),
+            std::string::npos);
 }
 
 TEST(ReportAxes, Log2AxisTicksEveryGrid) {
@@ -198,9 +206,8 @@ TEST(ReportCharts, SpeedChartsHaveFrontsErrboundReferenceAndFixedColours) {
     auto fronts = layersWith(spec, [](const json& o) {
       return o["mark"].value("type", "") == "line" && o.dump().find("datum.on_front") != std::string::npos;
     });
-    auto reference = layersWith(spec, [](const json& o) {
-      return o["mark"].value("type", "") == "line" && o["mark"].contains("strokeDash");
-    });
+    auto reference = layersWith(
+        spec, [](const json& o) { return o["mark"].value("type", "") == "line" && o["mark"].contains("strokeDash"); });
     EXPECT_EQ(fronts.size(), 4u) << "two paths x two error kinds";
     ASSERT_EQ(reference.size(), 4u);
     for (auto& r : reference) {
@@ -252,7 +259,8 @@ TEST(ReportCharts, ScaleChartsOnlyWhereTheRunVariesThem) {
   for (int grid : {16, 32})
     for (auto [w, h] : {std::pair{160, 90}, std::pair{320, 180}}) {
       double px = double(w) * h;
-      cases.push_back(makeCase("uniform", {{"level", 8}}, "flyover", w, h, grid, 1e-5 * px * grid / 16, 64.0 * grid * grid));
+      cases.push_back(
+          makeCase("uniform", {{"level", 8}}, "flyover", w, h, grid, 1e-5 * px * grid / 16, 64.0 * grid * grid));
       cases.push_back(makeCase("sphere", {{"tri_size", 4}}, "flyover", w, h, grid, 2e-5 * px, px / 4));
     }
   ReportRun run = makeRun(cases);
@@ -290,7 +298,8 @@ TEST(ReportCharts, ScaleChartsOnlyWhereTheRunVariesThem) {
 
   // A parameter sweep (errbound's max_error_px) gives the parameter chart, and nothing else.
   std::vector<ReportCase> sweep;
-  for (double b : {0.5, 1.0, 2.0}) sweep.push_back(makeCase("errbound", {{"max_error_px", b}}, "flyover", 320, 180, 32, 3 / b, 7e4 / b));
+  for (double b : {0.5, 1.0, 2.0})
+    sweep.push_back(makeCase("errbound", {{"max_error_px", b}}, "flyover", 320, 180, 32, 3 / b, 7e4 / b));
   sweep.push_back(makeCase("uniform", {{"level", 8}}, "flyover", 320, 180, 32, 1, 5e4));
   charts = scaleCharts(makeRun(sweep));
   ASSERT_EQ(charts.size(), 1u);

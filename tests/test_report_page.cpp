@@ -12,17 +12,17 @@
 #include <sstream>
 #include <tuple>
 
-#include "render/image_io.h"
 #include "error.h"
 #include "metrics/cracks.h"
+#include "render/image_io.h"
+#include "replay/measure.h"
 #include "report/report.h"
-#include "report_fixture.h"
 #include "report/report_answer.h"
 #include "report/report_images.h"
 #include "report/report_tables.h"
 #include "report/run_data.h"
 #include "report/scenario_table.h"
-#include "replay/measure.h"
+#include "report_fixture.h"
 
 using namespace lb;
 using nlohmann::json;

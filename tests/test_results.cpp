@@ -2,17 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <functional>
-#include <set>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "compare/run_data.h"
+#include "config/config.h"
 #include "error.h"
 #include "report/run_data.h"
-#include "config/config.h"
 #include "results/gbench_json.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
@@ -29,7 +28,8 @@ static json readJson(const fs::path& p) {
 static Config tinyConfig(const std::string& extraTerrain = "") {
   std::string text = R"({
     "name": "tiny", "resolution": [64, 48], "grid": 8, "fps": 10, "warmup_frames": 1, "max_frames": 4,
-    "terrains": [{"type": "procedural", "size": 65, "seed": 3})" + extraTerrain + R"(],
+    "terrains": [{"type": "procedural", "size": 65, "seed": 3})" +
+                     extraTerrain + R"(],
     "paths": ["paths/flyover.csv"],
     "schemes": [{"name": "uniform", "params": {"level": 3}}, "sphere"],
     "images": {"frames": [1], "modes": ["shaded", "heatmap"]}
@@ -69,7 +69,7 @@ TEST(Results, SchemaOfEveryFile) {
                             "clip_primitives", "fragment_invocations"})
       EXPECT_TRUE(f.contains(key)) << key;
     EXPECT_EQ(f["patches"], 64);
-    EXPECT_EQ(f["tes_invocations"], 64 * 16);  // (3+1)^2 per patch
+    EXPECT_EQ(f["tes_invocations"], 64 * 16);   // (3+1)^2 per patch
     EXPECT_EQ(f["clip_invocations"], 64 * 18);  // 2 * 3^2 per patch
     EXPECT_GT(f["gpu_ms"].get<double>(), 0.0);
   }
@@ -101,7 +101,8 @@ TEST(Results, FailingCaseIsRecordedAndSweepGoesOn) {
   // The config reads its heightmaps (a bad one is exit 2 before any case), so the file breaks
   // after the config was read: its cases fail at run time.
   std::ofstream(dir / "broken.hgt", std::ios::binary) << std::string(8, '\0');
-  Config config = tinyConfig(R"(, {"type": "r16", "width": 2, "height": 2, "file": ")" + (dir / "broken.hgt").string() + R"("})");
+  Config config =
+      tinyConfig(R"(, {"type": "r16", "width": 2, "height": 2, "file": ")" + (dir / "broken.hgt").string() + R"("})");
   std::ofstream(dir / "broken.hgt") << "not a heightmap";
   RunTotals t = runSweep(config, {(dir / "run").string(), false, false});
   EXPECT_EQ(t.ok, 2);
@@ -147,7 +148,8 @@ TEST(Results, MeasurementsLandInRecordsAndLeaveTimingFramesAlone) {
     json b = readJson(dOn / "cases" / (std::string(id) + ".json"));
     ASSERT_EQ(a["frames"].size(), b["frames"].size());
     for (size_t i = 0; i < a["frames"].size(); ++i)
-      for (const char* k : {"patches", "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"})
+      for (const char* k :
+           {"patches", "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"})
         EXPECT_EQ(a["frames"][i][k], b["frames"][i][k]) << "frame " << i << " " << k;
     int measured = 0;
     for (auto& f : b["frames"]) {

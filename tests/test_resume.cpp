@@ -2,8 +2,8 @@
 // reuses a finished case only when its input digest is unchanged, --shard must match the
 // folder's, and a sweep killed with SIGKILL at random moments resumes to results equal, counter
 // for counter, to an uninterrupted run.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,20 +12,19 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 #include <sstream>
 #include <thread>
 
-#include <nlohmann/json.hpp>
-
-#include "error.h"
 #include "config/case_identity.h"
+#include "config/config.h"
+#include "error.h"
 #include "results/run_dir.h"
 #include "sha256.h"
-#include "config/config.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -53,7 +52,8 @@ std::string slurp(const fs::path& p) {
 
 Config config(const std::string& body, const std::string& baseDir = kConfigs) {
   return parseConfig(R"({"name": "resume", "resolution": [48, 32], "grid": 4, "fps": 10, "warmup_frames": 0,
-                         "max_frames": 3, )" + body + "}",
+                         "max_frames": 3, )" +
+                         body + "}",
                      "resume.json", baseDir);
 }
 
@@ -104,7 +104,8 @@ TEST(CaseIdentity, SameStemDifferentContentsGetADigestSuffix) {
   fs::copy_file(kConfigs + "/paths/flyover.csv", d / "a/p.csv");
   fs::copy_file(kConfigs + "/paths/lowalt.csv", d / "b/p.csv");
   Config c = config(R"("terrain": {"type": "procedural", "size": 33, "seed": 5},
-                       "paths": ["a/p.csv", "b/p.csv"], "schemes": ["sphere"])", d.string());
+                       "paths": ["a/p.csv", "b/p.csv"], "schemes": ["sphere"])",
+                    d.string());
   std::vector<Case> cases = expandCases(c);
   ASSERT_EQ(cases.size(), 2u);
   EXPECT_NE(cases[0].id, cases[1].id);
@@ -215,8 +216,9 @@ TEST(Resume, SweepKilledAtTwentyRandomMomentsEqualsAnUninterruptedRun) {
   std::string cfg = (d / "kill.json").string();
   std::ofstream(cfg) << R"({"name": "kill20", "resolution": [96, 54], "grid": 8, "fps": 30, "warmup_frames": 1,
     "max_frames": 12, "terrain": {"type": "procedural", "size": 65, "seed": 2},
-    "paths": [")" + kConfigs + R"(/paths/flyover.csv", ")" + kConfigs + R"(/paths/lowalt.csv", ")" + kConfigs +
-                         R"(/paths/horizon.csv"],
+    "paths": [")" + kConfigs +
+                            R"(/paths/flyover.csv", ")" + kConfigs + R"(/paths/lowalt.csv", ")" + kConfigs +
+                            R"(/paths/horizon.csv"],
     "measure": {"every": 6, "passes": ["histogram", "popping"]},
     "schemes": [{"name": "uniform", "params": {"level": [2, 3, 4, 5, 6, 7, 8]}},
                 {"name": "sphere", "params": {"tri_size": [2, 3, 4, 6, 8, 12, 16]}}]})";

@@ -114,9 +114,9 @@ class RealDem : public lbtest::GpuTest {};
 
 }  // namespace
 
-// The SRTM crop at 90 m spacing, height_scale 5 (the full tile at extent 108000 before): with world-unit distances every patch sat at min_lod and the
-// three distance schemes drew the same triangles. At their defaults each now draws within 10x of
-// sphere's screen-space LOD either way, and no two schemes give the same per-frame counters.
+// The SRTM crop at 90 m spacing, height_scale 5 (the full tile at extent 108000 before): with world-unit distances
+// every patch sat at min_lod and the three distance schemes drew the same triangles. At their defaults each now draws
+// within 10x of sphere's screen-space LOD either way, and no two schemes give the same per-frame counters.
 TEST_F(RealDem, DistanceSchemesStayWithinTenfoldOfSphereAndDiffer) {
   const Heightfield* hf = realDem();
   const RenderSettings rs{kDemWidth, kDemHeight, 32};

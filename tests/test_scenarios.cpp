@@ -11,13 +11,13 @@
 #include <set>
 
 #include "cli_run.h"
-#include "schemes/registry.h"
+#include "config/config.h"
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"
 #include "metrics/image_metrics.h"
 #include "metrics/popping.h"
+#include "schemes/registry.h"
 #include "shaders/shared.h"
-#include "config/config.h"
 #include "terrain/generators.h"
 
 using namespace lb;
@@ -208,9 +208,10 @@ TEST_F(Scenarios, EdgeOnRidgeEdgeProjectionCollapsesAndErrsMore) {
   Config fly = loadConfig(kScenarios + "far-origin.json");  // the flyover: looking down at 50 degrees
   const CameraPose above = samplePose(loadCameraPath(fly.paths[0]), fly.fps, 8, s.terrain);
   const double fromAbove = collapsedFraction(sphere, edge, above);
-  std::printf("edge-on: mean error sphere %.3f px, sphere-edge %.3f px (x%.2f); collapsed edges %.1f%% edge-on, "
-              "%.1f%% from the flyover\n",
-              es / 3, ee / 3, ee / es, 100 * edgeOn, 100 * fromAbove);
+  std::printf(
+      "edge-on: mean error sphere %.3f px, sphere-edge %.3f px (x%.2f); collapsed edges %.1f%% edge-on, "
+      "%.1f%% from the flyover\n",
+      es / 3, ee / 3, ee / es, 100 * edgeOn, 100 * fromAbove);
   EXPECT_GT(ee, 1.1 * es);
   EXPECT_GT(edgeOn, 0.0);
 }
@@ -313,7 +314,7 @@ TEST_F(Scenarios, FarOriginMatchesAtOriginWithinToleranceAndBreaksFarAway) {
     std::printf("origin %.0f m: image mean abs diff %.3f (0..255), triangle count off by %.2f%%\n",
                 c.terrains[i].originX, mad[i], 100 * triangles[i]);
   }
-  EXPECT_LE(mad[1], 1.0);          // tolerance at 100 km: 1/255 mean, LOD within 1% of triangles
+  EXPECT_LE(mad[1], 1.0);  // tolerance at 100 km: 1/255 mean, LOD within 1% of triangles
   EXPECT_LE(triangles[1], 0.01);
   EXPECT_GT(mad[2], 4 * std::max(mad[1], 0.25));  // 10,000 km: clearly visible
 }
@@ -415,7 +416,7 @@ TEST_F(Scenarios, HorizonDistanceSpendsMoreTrianglesInsteadOfUnderDetailing) {
     td += rd.stats.clipPrimitives, ty += ry.stats.clipPrimitives;
     ed += meanError(*distance.r, pose(s, f)), ey += meanError(*density.r, pose(s, f));
   }
-  std::printf("horizon: distance %.3f px mean error with %llu triangles, density %.3f px with %llu\n", ed, 
+  std::printf("horizon: distance %.3f px mean error with %llu triangles, density %.3f px with %llu\n", ed,
               (unsigned long long)td, ey, (unsigned long long)ty);
   EXPECT_LT(ed, ey);
   EXPECT_GT(td, ty);

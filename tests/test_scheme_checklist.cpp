@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "metrics/frame_metrics.h"
 #include "report/charts.h"
 #include "schemes/registry.h"
-#include "metrics/frame_metrics.h"
 
 using namespace lb;
 

@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "config/config.h"
 #include "error.h"
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
 #include "shaders/shared.h"
-#include "config/config.h"
 
 using namespace lb;
 using lbtest::gpu;

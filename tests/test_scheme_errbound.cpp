@@ -15,9 +15,9 @@
 #include "metrics/cracks.h"
 #include "metrics/image_metrics.h"
 #include "metrics/surplus.h"
+#include "schemes/preprocess/tess_deviation.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
-#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -88,16 +88,18 @@ int checkBound(Renderer& r, const std::vector<CameraPose>& poses, double bound, 
     double maxErr = *std::max_element(err.begin(), err.end());
     if (unmet > 0) {
       ++unmetFrames;
-      std::printf("[errbound] %s bound %.1f: frame %zu excluded, %ld patches cannot meet the bound at level 64 "
-                  "(max error %.3f px)\n", what.c_str(), bound, i, unmet, maxErr);
+      std::printf(
+          "[errbound] %s bound %.1f: frame %zu excluded, %ld patches cannot meet the bound at level 64 "
+          "(max error %.3f px)\n",
+          what.c_str(), bound, i, unmet, maxErr);
       continue;
     }
     ++checked;
     worst = std::max(worst, maxErr / bound);
     EXPECT_LE(maxErr, 1.05 * bound) << what << " frame " << i << " bound " << bound;
   }
-  std::printf("[errbound] %s bound %.1f: %d frames checked, worst max/bound %.3f, %d excluded (unmet)\n",
-              what.c_str(), bound, checked, worst, unmetFrames);
+  std::printf("[errbound] %s bound %.1f: %d frames checked, worst max/bound %.3f, %d excluded (unmet)\n", what.c_str(),
+              bound, checked, worst, unmetFrames);
   EXPECT_GT(checked, 0) << what << ": every frame was excluded";
   return unmetFrames;
 }
@@ -238,7 +240,8 @@ TEST_F(ErrboundScheme, NoCracksOnShippedPaths) {
         r.setUniformParams({{"max_error_px", bound}});
         RgbaImage img{rs.width, rs.height, r.renderImage(pose, pose, RenderMode::Shaded)};
         std::vector<float> levels = r.capturedLevels();
-        EXPECT_EQ(analyticCracks(*findScheme("errbound"), r.params(), lbtest::testTerrain(), rs.grid, levels), 0) << path;
+        EXPECT_EQ(analyticCracks(*findScheme("errbound"), r.params(), lbtest::testTerrain(), rs.grid, levels), 0)
+            << path;
         EXPECT_EQ(crackPixels(img, refImg, nullptr), 0) << path << " bound " << bound;
       }
     }

@@ -161,11 +161,8 @@ TEST_F(InterlockScheme, LowerNeighbourLandsOnTheOuterLevelFacingIt) {
     ASSERT_GT(far, nearMax + 10.0) << "side " << side << ": the set-up needs one clearly farther neighbour";
     const double extent = testTerrain().extent;
     LodParams p{(nearMax + far) / 2 / extent, (nearMax + far) / 2 / extent + 1, 1, 16};
-    r.setScheme(*findScheme("interlock"), {{"dmin", p.minDistance},
-                                           {"dmax", p.maxDistance},
-                                           {"min_lod", 1},
-                                           {"max_lod", 16},
-                                           {"cull", 0}});
+    r.setScheme(*findScheme("interlock"),
+                {{"dmin", p.minDistance}, {"dmax", p.maxDistance}, {"min_lod", 1}, {"max_lod", 16}, {"cull", 0}});
     auto pose = lbtest::poseAt(eye, glm::vec3(own) + glm::vec3(1, -30, 1));
     auto lv = captureLevels(r, pose);
     const float* a = &lv[size_t(pj * n + pi) * kStride];

@@ -7,8 +7,8 @@
 #include "error.h"
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
-#include "shaders/shared.h"
 #include "schemes/preprocess/plane_fit.h"
+#include "shaders/shared.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -161,8 +161,8 @@ TEST_P(PlaneFitLevels, FactorsAreWeightedDistanceLod) {
       EXPECT_NEAR(l[1], level(0.5 * (c0 + c1), c, c + glm::ivec2(1, 0)), 1e-4 * inner) << i << "," << j;
       EXPECT_NEAR(l[2], level(0.5 * (c1 + c2), c + glm::ivec2(1, 0), c + 1), 1e-4 * inner) << i << "," << j;
       EXPECT_NEAR(l[3], level(0.5 * (c3 + c2), c + glm::ivec2(0, 1), c + 1), 1e-4 * inner) << i << "," << j;
-      double s =
-          std::clamp((glm::distance(glm::dvec3(eye), (c0 + c1 + c2 + c3) * 0.25) / extent - dmin) / (dmax - dmin), 0., 1.);
+      double s = std::clamp(
+          (glm::distance(glm::dvec3(eye), (c0 + c1 + c2 + c3) * 0.25) / extent - dmin) / (dmax - dmin), 0., 1.);
       belowDistanceLod += inner < minLod + (maxLod - minLod) * (1 - s) - 1e-3;  // the weight lowered it
       if (i + 1 < n && lv[size_t(j * n + i + 1) * LB_CAPTURE_STRIDE + 4] > 0) {
         EXPECT_EQ(l[2], lv[size_t(j * n + i + 1) * LB_CAPTURE_STRIDE + 0]) << "crack at u=1 of " << i << "," << j;

@@ -5,16 +5,15 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <map>
-#include <set>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
-#include <nlohmann/json.hpp>
-
-#include "error.h"
 #include "config/config.h"
+#include "error.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
 
@@ -122,7 +121,8 @@ TEST(Sweep, KilledSweepLosesNoFinishedCaseAndResumes) {
   std::string cfg = (d / "kill.json").string();
   std::ofstream(cfg) << R"({"name": "kill", "resolution": [64, 48], "grid": 8, "fps": 30, "warmup_frames": 0,
     "terrain": {"type": "procedural", "size": 65, "seed": 2},
-    "paths": [")" + kConfigs + R"(/paths/flyover.csv"],
+    "paths": [")" + kConfigs +
+                            R"(/paths/flyover.csv"],
     "schemes": [{"name": "uniform", "params": {"level": [2, 3, 4, 5, 6, 7]}}]})";
   fs::path run = d / "run";
   for (int sig : {SIGKILL, SIGINT}) {

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "dem_crop.h"
-#include "input_error.h"
 #include "error.h"
+#include "input_error.h"
 #include "terrain/heightfield.h"
 
 using lb::Heightfield;
@@ -21,7 +21,9 @@ using lb::TerrainSpec;
 
 namespace {
 
-std::string tempPath(const std::string& name) { return ::testing::TempDir() + "lodbench_terrain_" + name; }
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "lodbench_terrain_" + name;
+}
 
 void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes) {
   std::ofstream out(path, std::ios::binary);
@@ -112,7 +114,9 @@ Heightfield smallField() {
 }
 
 // Heights of the synthetic .hgt, in metres; x = column (west->east), z = row (north->south).
-int16_t hgtPattern(int x, int z) { return int16_t(x - 2 * z + 100); }
+int16_t hgtPattern(int x, int z) {
+  return int16_t(x - 2 * z + 100);
+}
 
 }  // namespace
 
@@ -272,7 +276,8 @@ TEST(Terrain, Png16Roundtrip) {
 // The four file types agree: the same stored samples give the same heights.
 TEST(Terrain, EveryFileTypeMeansStoredValueTimesHeightScale) {
   const std::vector<uint16_t> px = {0, 1, 258, 8848, 4096, 77};
-  TerrainSpec png = fileSpec("png16", "same.png"), r16 = fileSpec("r16", "same.r16"), r32 = fileSpec("r32f", "same.r32f");
+  TerrainSpec png = fileSpec("png16", "same.png"), r16 = fileSpec("r16", "same.r16"),
+              r32 = fileSpec("r32f", "same.r32f");
   writeBytes(png.file, png16Gray(3, 2, px));
   std::vector<unsigned char> b16, b32;
   for (uint16_t v : px) {

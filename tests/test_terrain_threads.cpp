@@ -7,13 +7,13 @@
 #include <cstring>
 #include <string>
 
-#include "schemes/registry.h"
 #include "schemes/preprocess/density_map.h"
+#include "schemes/preprocess/plane_fit.h"
+#include "schemes/preprocess/tess_deviation.h"
+#include "schemes/registry.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
-#include "schemes/preprocess/plane_fit.h"
-#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 
@@ -30,8 +30,10 @@ struct ThreadsEnv {
     setenv("LODBENCH_THREADS", std::to_string(n).c_str(), 1);
   }
   ~ThreadsEnv() {
-    if (had) setenv("LODBENCH_THREADS", old.c_str(), 1);
-    else unsetenv("LODBENCH_THREADS");
+    if (had)
+      setenv("LODBENCH_THREADS", old.c_str(), 1);
+    else
+      unsetenv("LODBENCH_THREADS");
   }
 };
 
@@ -73,8 +75,11 @@ TEST(TerrainThreads, EveryPassIsBitIdenticalOnOneAndManyThreads) {
     EXPECT_TRUE(sameBytes(one.normals.texels, many.normals.texels)) << threads << " threads: normal map";
     EXPECT_TRUE(sameBytes(one.density, many.density)) << threads << " threads: density map";
     ASSERT_EQ(one.book.blocks.size(), many.book.blocks.size());
-    EXPECT_EQ(std::memcmp(one.book.blocks.data(), many.book.blocks.data(), one.book.blocks.size() * sizeof(PlaneFitBlock)), 0);
-    EXPECT_EQ(std::memcmp(one.lsq.blocks.data(), many.lsq.blocks.data(), one.lsq.blocks.size() * sizeof(PlaneFitBlock)), 0);
+    EXPECT_EQ(
+        std::memcmp(one.book.blocks.data(), many.book.blocks.data(), one.book.blocks.size() * sizeof(PlaneFitBlock)),
+        0);
+    EXPECT_EQ(std::memcmp(one.lsq.blocks.data(), many.lsq.blocks.data(), one.lsq.blocks.size() * sizeof(PlaneFitBlock)),
+              0);
     EXPECT_TRUE(sameBytes(one.dev.dev, many.dev.dev)) << threads << " threads: deviation table";
   }
 }
@@ -82,11 +87,16 @@ TEST(TerrainThreads, EveryPassIsBitIdenticalOnOneAndManyThreads) {
 TEST(TerrainThreads, ParallelRowsCoversEveryRowOnce) {
   ThreadsEnv env(7);
   std::vector<int> hits(1000, 0);
-  parallelRows(1000, [&](int r0, int r1) {
-    for (int r = r0; r < r1; ++r) ++hits[size_t(r)];
-  }, 1);
+  parallelRows(
+      1000,
+      [&](int r0, int r1) {
+        for (int r = r0; r < r1; ++r) ++hits[size_t(r)];
+      },
+      1);
   for (int h : hits) EXPECT_EQ(h, 1);
-  EXPECT_THROW(parallelRows(100, [](int, int) { throw std::runtime_error("band"); }, 1), std::runtime_error);
+  EXPECT_THROW(parallelRows(
+                   100, [](int, int) { throw std::runtime_error("band"); }, 1),
+               std::runtime_error);
 }
 
 TEST(TerrainDetail, ResolutionDetailKeepsSmallTerrainsAndAddsOctavesToLargeOnes) {

@@ -11,9 +11,9 @@
 
 #include "dem_crop.h"
 #include "schemes/preprocess/deviation_bounds.h"
+#include "schemes/preprocess/tess_deviation.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
-#include "schemes/preprocess/tess_deviation.h"
 
 using namespace lb;
 

@@ -2,16 +2,15 @@
 // the minimal loop (probe), and clock-control calibration with a planted drift.
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <tuple>
 
-#include <nlohmann/json.hpp>
-
+#include "config/config.h"
 #include "error.h"
 #include "gpu_fixture.h"
 #include "render/probe.h"
-#include "config/config.h"
-#include "sweep/runner.h"
 #include "replay/timing_passes.h"
+#include "sweep/runner.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -102,7 +101,8 @@ TEST_P(Probe, MatchesUniformSchemeWork) {
   }
 }
 INSTANTIATE_TEST_SUITE_P(Modes, Probe,
-                         ::testing::Combine(::testing::Values(RenderMode::Shaded, RenderMode::Depth, RenderMode::Frontend),
+                         ::testing::Combine(::testing::Values(RenderMode::Shaded, RenderMode::Depth,
+                                                              RenderMode::Frontend),
                                             ::testing::Bool()));
 
 TEST(Calibration, StableNeedsThreeRunsWithinTolerance) {
@@ -167,14 +167,17 @@ TEST(TimingConfig, BadKeysNameTheField) {
   const std::string dir = std::string(LODBENCH_SOURCE_DIR) + "/configs";
   auto parse = [&](const std::string& extra) {
     return parseConfig(R"({"name": "t", "terrain": {"type": "procedural", "size": 33}, "paths": ["paths/flyover.csv"],
-      "schemes": ["uniform"], )" + extra + "}",
+      "schemes": ["uniform"], )" +
+                           extra + "}",
                        "t.json", dir);
   };
-  EXPECT_EQ(parse(R"("timing": ["shaded", "frontend"])").timing.modes, (std::vector<std::string>{"shaded", "frontend"}));
+  EXPECT_EQ(parse(R"("timing": ["shaded", "frontend"])").timing.modes,
+            (std::vector<std::string>{"shaded", "frontend"}));
   EXPECT_TRUE(parse(R"("calibration": true)").timing.calibrate);
   EXPECT_EQ(parse(R"("calibration": {"level": 8})").timing.level, 8);
-  for (const char* bad : {R"("timing": ["shaded", "wire"])", R"("timing": ["depth"])", R"("timing": ["shaded", "shaded"])",
-                          R"("calibration": {"levels": 8})", R"("calibration": {"max_tries": 2})"}) {
+  for (const char* bad :
+       {R"("timing": ["shaded", "wire"])", R"("timing": ["depth"])", R"("timing": ["shaded", "shaded"])",
+        R"("calibration": {"levels": 8})", R"("calibration": {"max_tries": 2})"}) {
     try {
       parse(bad);
       ADD_FAILURE() << "accepted " << bad;

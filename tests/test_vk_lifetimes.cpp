@@ -3,13 +3,13 @@
 // everything it made: vk::Unique's count of live objects comes back to where it was, and the
 // validation layer (on under ctest) reports no object left alive when the test's own device is
 // destroyed. The same creation must then run as if nothing had happened, with the same output.
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "gpu_fixture.h"
 #include "render/compute_pass.h"
@@ -111,15 +111,15 @@ TEST_F(VkLifetimes, RendererOfAComputePassSchemeReleasesEverythingAtEveryFailedS
 
 TEST_F(VkLifetimes, ComputePassReleasesEverythingAtEveryFailedStep) {
   const lb::Heightfield& terrain = lbtest::testTerrain();
-  lb::Image height = lb::createImage(ctx_, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
-                                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                     VK_IMAGE_ASPECT_COLOR_BIT);
+  lb::Image height =
+      lb::createImage(ctx_, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   lb::uploadImage(ctx_, height, terrain.h.data(), terrain.h.size() * sizeof(float));
   lb::vk::Unique<VkSampler> sampler = lb::createSampler(ctx_, VK_FILTER_NEAREST);
-  lb::Image output = lb::createImage(ctx_, 8, 8, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                     VK_IMAGE_ASPECT_COLOR_BIT);
+  lb::Image output =
+      lb::createImage(ctx_, 8, 8, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                      VK_IMAGE_ASPECT_COLOR_BIT);
   lb::ComputePush push{};
   push.terrain = glm::vec4(terrain.extent, 8.0f, terrain.minHeight, terrain.maxHeight);
   auto pass = [&] {

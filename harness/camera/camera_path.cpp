@@ -38,8 +38,8 @@ constexpr double kMinXZ = -1, kMaxXZ = 2, kMinY = -1, kMaxY = 10;
 constexpr double kGroundClearance = 0.002;  // fraction of the extent; keeps the near plane above ground
 
 // Blank lines are tolerated as well as '#' comments: a stray empty line is not worth an error.
-using Reader = io::CSVReader<kColumns, io::trim_chars<' ', '\t'>, io::no_quote_escape<','>,
-                             io::throw_on_overflow, io::single_and_empty_line_comment<'#'>>;
+using Reader = io::CSVReader<kColumns, io::trim_chars<' ', '\t'>, io::no_quote_escape<','>, io::throw_on_overflow,
+                             io::single_and_empty_line_comment<'#'>>;
 
 std::string num(double v) {
   std::ostringstream s;
@@ -186,8 +186,8 @@ CameraPath parseCameraPath(const std::string& text, const std::string& nameForEr
       Keyframe k = parseRow(f, nameForErrors, line);
       if (!path.keys.empty() && !(k.time > path.keys.back().time))
         failColumn(nameForErrors, line, 0,
-                   num(k.time) + " is not after the previous keyframe's " + num(path.keys.back().time) +
-                       " (line " + std::to_string(prevLine) + "); times must strictly increase");
+                   num(k.time) + " is not after the previous keyframe's " + num(path.keys.back().time) + " (line " +
+                       std::to_string(prevLine) + "); times must strictly increase");
       path.keys.push_back(k);
       prevLine = line;
     }

@@ -3,10 +3,9 @@
 // fixed frame rate with Catmull-Rom interpolation. Coordinates are relative to the terrain:
 // x and z are fractions of the extent ([0,1] covers the terrain), y is in units of the extent
 // above the terrain's minimum height. The sampler keeps the eye above the ground.
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace lb {
 

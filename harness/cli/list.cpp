@@ -9,9 +9,13 @@ namespace lb {
 
 namespace {
 
-std::string pad(const std::string& s, size_t width) { return s + std::string(width > s.size() ? width - s.size() : 0, ' '); }
+std::string pad(const std::string& s, size_t width) {
+  return s + std::string(width > s.size() ? width - s.size() : 0, ' ');
+}
 
-std::string rangeText(const ParamSpec& p) { return "[" + numberText(p.min) + ", " + numberText(p.max) + "]"; }
+std::string rangeText(const ParamSpec& p) {
+  return "[" + numberText(p.min) + ", " + numberText(p.max) + "]";
+}
 
 }  // namespace
 
@@ -34,7 +38,8 @@ std::string schemeListing(const std::vector<const Scheme*>& schemes) {
     const SchemeInfo& i = s->info();
     out += pad(i.name, nameW + 2) + i.description + "\n";
     out += indent + "seed: " + i.seed + "\n";
-    out += indent + "patches: " + topologyName(i.topology) + ", partitioning: " + partitioningName(i.partitioning) + "\n";
+    out +=
+        indent + "patches: " + topologyName(i.topology) + ", partitioning: " + partitioningName(i.partitioning) + "\n";
     for (const ParamSpec& p : i.params) {
       std::string line = indent + pad(p.name, paramW) + "  default " + pad(numberText(p.defaultValue), defaultW) +
                          "  range " + pad(rangeText(p), rangeW);

@@ -8,18 +8,17 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "error.h"
-#include "schemes/registry.h"
 #include "config/config.h"
+#include "error.h"
 #include "results/write.h"
-#include "terrain/terrain_cache.h"
+#include "schemes/registry.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
+#include "terrain/terrain_cache.h"
 
 namespace lb {
 namespace {
@@ -99,13 +98,22 @@ Stage timeStage(const std::string& name, Work work, Hash hash) {
 
 json stageJson(const Stage& s) {
   auto bytes = [](long long kb) { return kb >= 0 ? json(kb * 1024) : json(nullptr); };
-  return {{"stage", s.name}, {"seconds", s.seconds}, {"cpu_seconds", s.cpuSeconds}, {"peak_rss_bytes", bytes(s.peakKb)},
-          {"rss_after_bytes", bytes(s.afterKb)}, {"output_hash", s.hash}};
+  return {{"stage", s.name},
+          {"seconds", s.seconds},
+          {"cpu_seconds", s.cpuSeconds},
+          {"peak_rss_bytes", bytes(s.peakKb)},
+          {"rss_after_bytes", bytes(s.afterKb)},
+          {"output_hash", s.hash}};
 }
 
 json specJson(const TerrainSpec& t) {
-  return {{"type", t.type}, {"file", t.file}, {"size", t.size}, {"seed", t.seed}, {"extent", t.extent},
-          {"height_scale", t.heightScale}, {"detail", t.detailToSpacing ? "resolution" : "fixed"},
+  return {{"type", t.type},
+          {"file", t.file},
+          {"size", t.size},
+          {"seed", t.seed},
+          {"extent", t.extent},
+          {"height_scale", t.heightScale},
+          {"detail", t.detailToSpacing ? "resolution" : "fixed"},
           {"label", terrainLabel(t)}};
 }
 
@@ -115,7 +123,8 @@ struct SchemeOutput {
   SchemeTexture tex;
 };
 bool schemeStage(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int grid, SchemeOutput& out) {
-  out.tex = scheme.info().compute.empty() ? scheme.preprocessGrid(hf, params, grid) : scheme.computeReference(hf, params);
+  out.tex =
+      scheme.info().compute.empty() ? scheme.preprocessGrid(hf, params, grid) : scheme.computeReference(hf, params);
   return !out.tex.rgba.empty();
 }
 
@@ -149,8 +158,12 @@ void writeRaw(const std::string& file, const Heightfield& hf) {
 int loadBenchCommand(const LoadBenchOptions& o) {
   if (o.threads > 0) setenv("LODBENCH_THREADS", std::to_string(o.threads).c_str(), 1);
   const bool perStagePeak = resetPeak();
-  json out = {{"tool", "lodbench"}, {"tool_version", LODBENCH_VERSION}, {"git_commit", gitCommit()},
-              {"time", isoTimeUtc()}, {"config_file", o.config}, {"threads", terrainThreads()},
+  json out = {{"tool", "lodbench"},
+              {"tool_version", LODBENCH_VERSION},
+              {"git_commit", gitCommit()},
+              {"time", isoTimeUtc()},
+              {"config_file", o.config},
+              {"threads", terrainThreads()},
               {"hardware_threads", int(sysconf(_SC_NPROCESSORS_ONLN))},
               {"peak_is_per_stage", perStagePeak}};
   char host[256] = "unknown";
@@ -162,7 +175,8 @@ int loadBenchCommand(const LoadBenchOptions& o) {
   out["build_type"] = "debug";
 #endif
   Config config;
-  Stage parse = timeStage("config", [&] { config = loadConfig(o.config); }, [] { return std::string(); });
+  Stage parse = timeStage(
+      "config", [&] { config = loadConfig(o.config); }, [] { return std::string(); });
   out["config"] = config.raw;
   out["grid"] = config.grid;
   json terrains = json::array();
@@ -173,14 +187,16 @@ int loadBenchCommand(const LoadBenchOptions& o) {
     if (ti == 0) stages.push_back(parse);
     // As a sweep gets it: a file the config stage read (and kept, when large) is not read again.
     std::shared_ptr<const Heightfield> held;
-    stages.push_back(timeStage("load", [&] { held = sharedHeightfield(spec); },
-                               [&] { return fingerprint(held->h.data(), held->h.size() * sizeof(float)); }));
+    stages.push_back(timeStage(
+        "load", [&] { held = sharedHeightfield(spec); },
+        [&] { return fingerprint(held->h.data(), held->h.size() * sizeof(float)); }));
     const Heightfield& hf = *held;
     if (ti == 0 && !o.writeR32f.empty()) writeRaw(o.writeR32f, hf);
     // Each output is dropped after its stage, as the renderer drops it after the upload.
     NormalMap nm;
-    stages.push_back(timeStage("normal_map", [&] { nm = computeNormalMap(hf); },
-                               [&] { return fingerprint(nm.texels.data(), nm.texels.size() * sizeof(uint16_t)); }));
+    stages.push_back(timeStage(
+        "normal_map", [&] { nm = computeNormalMap(hf); },
+        [&] { return fingerprint(nm.texels.data(), nm.texels.size() * sizeof(uint16_t)); }));
     nm = NormalMap();
     for (const SchemeEntry& e : config.schemes) {
       const Scheme* scheme = findScheme(e.name);
@@ -188,8 +204,8 @@ int loadBenchCommand(const LoadBenchOptions& o) {
       const ParamValues params = resolveParams(scheme->info(), e.variants.empty() ? ParamValues{} : e.variants[0]);
       SchemeOutput so;
       bool any = false;
-      Stage s = timeStage(e.name, [&] { any = schemeStage(*scheme, params, hf, config.grid, so); },
-                          [&] { return fingerprint(so); });
+      Stage s = timeStage(
+          e.name, [&] { any = schemeStage(*scheme, params, hf, config.grid, so); }, [&] { return fingerprint(so); });
       if (any) stages.push_back(s);
     }
     const double raw = 4.0 * double(hf.h.size());
@@ -202,8 +218,12 @@ int loadBenchCommand(const LoadBenchOptions& o) {
       peakKb = std::max(peakKb, s.peakKb);
     }
     processPeakKb = std::max(processPeakKb, peakKb);
-    terrains.push_back({{"terrain", specJson(spec)}, {"width", hf.width}, {"height", hf.height},
-                        {"raw_height_bytes", raw}, {"stages", list}, {"total_seconds", total},
+    terrains.push_back({{"terrain", specJson(spec)},
+                        {"width", hf.width},
+                        {"height", hf.height},
+                        {"raw_height_bytes", raw},
+                        {"stages", list},
+                        {"total_seconds", total},
                         {"peak_rss_bytes", peakKb >= 0 ? json(peakKb * 1024) : json(nullptr)},
                         {"peak_over_raw", peakKb >= 0 ? json(double(peakKb) * 1024.0 / raw) : json(nullptr)}});
   }

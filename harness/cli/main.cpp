@@ -2,31 +2,30 @@
 // compare, ab, gbench, probe.
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
-#include <CLI/CLI.hpp>
-
 #include "camera/camera_path.h"
 #include "cli/list.h"
+#include "cli/load_bench.h"
+#include "cli/probe_command.h"
 #include "compare/commands.h"
+#include "config/config.h"
 #include "error.h"
 #include "metrics/cracks.h"
 #include "number_text.h"
-#include "replay/measure.h"
-#include "sweep/merge.h"
-#include "cli/probe_command.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "render/terrain_fit.h"
+#include "replay/measure.h"
 #include "report/report.h"
-#include "schemes/registry.h"
-#include "config/config.h"
 #include "results/gbench_json.h"
-#include "cli/load_bench.h"
+#include "schemes/registry.h"
+#include "sweep/merge.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_shape.h"
@@ -44,10 +43,11 @@ static int listDevicesCmd() {
     std::printf("[%d] %s: %s\n", d.index, d.name.c_str(), d.suitable ? "suitable" : d.rejectReason.c_str());
     const DeviceLimits& l = d.limits;
     const int side = largestSquareTerrain(l);
-    std::printf("    largest terrain: %d x %d samples (maxImageDimension2D %u, largest allocation %llu MiB, "
-                "%s heap %llu MiB)\n",
-                side, side, l.maxImageDimension2D, (unsigned long long)(l.maxAllocationBytes >> 20),
-                l.sharedHeap ? "one" : "device-local", (unsigned long long)(l.deviceHeapBytes >> 20));
+    std::printf(
+        "    largest terrain: %d x %d samples (maxImageDimension2D %u, largest allocation %llu MiB, "
+        "%s heap %llu MiB)\n",
+        side, side, l.maxImageDimension2D, (unsigned long long)(l.maxAllocationBytes >> 20),
+        l.sharedHeap ? "one" : "device-local", (unsigned long long)(l.deviceHeapBytes >> 20));
   }
   return 0;
 }
@@ -57,7 +57,7 @@ struct RenderArgs {
   std::vector<std::string> params;
   int frame = 0, width = 640, height = 360, grid = 32, size = 513;
   int terrainWidth = 0, terrainHeight = 0;  // r16 / r32f: samples per row and rows
-  int band = 0, overview = 0;                // gdal (the config's terrain 'band', 'overview', 'window')
+  int band = 0, overview = 0;               // gdal (the config's terrain 'band', 'overview', 'window')
   std::vector<int> window;
   bool sizeOrSeedGiven = false;
   unsigned seed = 1;
@@ -75,12 +75,15 @@ static TerrainSpec renderTerrain(const RenderArgs& a) {
   if (!procedural && spec.type != "hgt" && spec.type != "png16" && !raw && !gdal)
     throw InputError("--terrain '" + printable(spec.type) + "': not one of procedural, hgt, png16, r16, r32f, gdal");
   if (procedural && !a.terrainFile.empty())
-    throw InputError("--terrain-file needs a file terrain type (--terrain hgt|png16|r16|r32f|gdal); procedural terrains are generated");
+    throw InputError(
+        "--terrain-file needs a file terrain type (--terrain hgt|png16|r16|r32f|gdal); procedural terrains are "
+        "generated");
   if (!gdal && (a.band != 0 || a.overview != 0 || !a.window.empty()))
     throw InputError("--band, --window and --overview apply to --terrain gdal only");
   if (!procedural && a.terrainFile.empty()) throw InputError("--terrain " + spec.type + " needs --terrain-file FILE");
   if (!procedural && a.sizeOrSeedGiven)
-    throw InputError("--size and --seed apply to procedural terrains only (--terrain " + spec.type + " reads its file)");
+    throw InputError("--size and --seed apply to procedural terrains only (--terrain " + spec.type +
+                     " reads its file)");
   if (raw && (a.terrainWidth == 0 || a.terrainHeight == 0))
     throw InputError("--terrain " + spec.type + " needs --terrain-width and --terrain-height (samples per row, rows)");
   if (!raw && (a.terrainWidth != 0 || a.terrainHeight != 0))
@@ -103,7 +106,8 @@ static TerrainSpec renderTerrain(const RenderArgs& a) {
 static void checkOutputFile(const std::string& path, const char* flag) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(std::string(flag) + " '" + path + "' is a directory; give a file name");
+  if (fs::is_directory(path, ec))
+    throw InputError(std::string(flag) + " '" + path + "' is a directory; give a file name");
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
   if (!fs::is_directory(dir, ec))
@@ -132,7 +136,8 @@ static int renderCmd(const RenderArgs& a) {
   CameraPath path = loadCameraPath(a.path);
   int frames = frameCount(path, a.fps);
   if (a.frame < 0 || a.frame >= frames)
-    throw InputError("--frame " + std::to_string(a.frame) + " is outside the path's " + std::to_string(frames) + " frames");
+    throw InputError("--frame " + std::to_string(a.frame) + " is outside the path's " + std::to_string(frames) +
+                     " frames");
   Context ctx;
   createContext(ctx, {a.device, a.validation});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
@@ -153,8 +158,8 @@ static int renderCmd(const RenderArgs& a) {
       spec.every = 1;
       spec.passes = {"error", "cracks"};
       ReferenceCache refs;
-      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame,
-                                    pose, pose);
+      FrameMetrics m =
+          measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame, pose, pose);
       px = a.error ? errorImage(m.errorMap, a.width, a.height).px
                    : crackMaskImage({a.width, a.height, px}, m.crackMask).px;  // over the sky-shaded frame
       for (auto& [k, v] : m.values) std::printf("%s = %g\n", k.c_str(), v);
@@ -231,26 +236,37 @@ int main(int argc, char** argv) {
   render->add_option("--param", ra.params, "Scheme parameter name=value (repeatable)");
   render->add_option("--path", ra.path, "Camera path CSV")->required();
   render->add_option("--frame", ra.frame, "Frame index")->capture_default_str();
-  render->add_option("--fps", ra.fps, "Path sampling rate (frames per second)")->capture_default_str()->check(finite(1, 1000));
+  render->add_option("--fps", ra.fps, "Path sampling rate (frames per second)")
+      ->capture_default_str()
+      ->check(finite(1, 1000));
   render->add_option("--out", ra.out, "Output PNG")->capture_default_str();
   render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--height", ra.height, "Image height")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--grid", ra.grid, "Patches per side")->capture_default_str()->check(CLI::Range(1, 1024));
-  render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f | gdal")->capture_default_str();
+  render->add_option("--terrain", ra.terrainType, "procedural | hgt | png16 | r16 | r32f | gdal")
+      ->capture_default_str();
   render->add_option("--terrain-file", ra.terrainFile, "Heightmap file for non-procedural terrains");
   render->add_option("--terrain-width", ra.terrainWidth, "r16 / r32f: samples per row (the config's terrain 'width')")
       ->check(CLI::Range(2, 65536));
   render->add_option("--terrain-height", ra.terrainHeight, "r16 / r32f: number of rows (the config's terrain 'height')")
       ->check(CLI::Range(2, 65536));
-  render->add_option("--size", ra.size, "Procedural terrain samples per side")->capture_default_str()->check(CLI::Range(2, 16385));
+  render->add_option("--size", ra.size, "Procedural terrain samples per side")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 16385));
   render->add_option("--seed", ra.seed, "Procedural terrain seed")->capture_default_str();
-  render->add_option("--extent", ra.extent, "World extent of the terrain (default 1000; gdal: from the file's georeferencing)")
+  render
+      ->add_option("--extent", ra.extent,
+                   "World extent of the terrain (default 1000; gdal: from the file's georeferencing)")
       ->check(finite(1e-3, 1e9));
-  render->add_option("--band", ra.band, "gdal: raster band, 1-based (needed for a multi-band file)")->check(CLI::Range(1, 65535));
+  render->add_option("--band", ra.band, "gdal: raster band, 1-based (needed for a multi-band file)")
+      ->check(CLI::Range(1, 65535));
   render->add_option("--window", ra.window, "gdal: X Y W H pixel rectangle to read")->expected(4);
-  render->add_option("--overview", ra.overview, "gdal: the file's overview level k (else a 2^k average)")->check(CLI::Range(1, 30));
-  render->add_option("--height-scale", ra.heightScale,
-                     "Height scale (procedural: peak height, default 120; files: multiplier on the stored values, default 1)")
+  render->add_option("--overview", ra.overview, "gdal: the file's overview level k (else a 2^k average)")
+      ->check(CLI::Range(1, 30));
+  render
+      ->add_option(
+          "--height-scale", ra.heightScale,
+          "Height scale (procedural: peak height, default 120; files: multiplier on the stored values, default 1)")
       ->check(finite(0, 1e9));
   render->add_option("--device", ra.device, "Vulkan device: name substring or index");
   render->add_flag("--validation", ra.validation, "Enable the Vulkan validation layer");
@@ -276,7 +292,8 @@ int main(int argc, char** argv) {
   compare->add_option("baseline", baselineDir, "Baseline run directory, e.g. results/baseline/ci")->required();
   compare->add_option("candidate", candidateDirs, "Candidate run directory; several = rounds of one config, pooled")
       ->required();
-  auto* ab = app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B B A A B ...) and compare");
+  auto* ab =
+      app.add_subcommand("ab", "Run one config with two lodbench binaries interleaved (A B B A A B ...) and compare");
   AbOptions abo;
   ab->add_option("--baseline", abo.baseline, "lodbench binary A (baseline)")->required();
   ab->add_option("--candidate", abo.candidate, "lodbench binary B (candidate)")->required();
@@ -287,11 +304,14 @@ int main(int argc, char** argv) {
   VerdictFiles vf;
   for (CLI::App* sub : {compare, ab}) {
     sub->add_option("--threshold", co.threshold, "Timing regression when slower than 1 + threshold (and significant)")
-        ->capture_default_str()->check(finite(0, HUGE_VAL));
+        ->capture_default_str()
+        ->check(finite(0, HUGE_VAL));
     sub->add_option("--alpha", co.alpha, "Significance level of the timing test (t-test on the rounds)")
-        ->capture_default_str()->check(finite(1e-9, 0.5));
+        ->capture_default_str()
+        ->check(finite(1e-9, 0.5));
     sub->add_option("--error-tolerance", co.errorTolerance, "Relative worsening of accuracy metrics allowed")
-        ->capture_default_str()->check(finite(0, HUGE_VAL));
+        ->capture_default_str()
+        ->check(finite(0, HUGE_VAL));
     sub->add_flag("--require-exact", co.requireExact,
                   "Counters that cannot be compared (other device or driver) are an error (exit 2), not a pass");
     sub->add_option("--json", vf.json, "Write the verdict as JSON");
@@ -302,29 +322,46 @@ int main(int argc, char** argv) {
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
 
   // probe: the minimal tessellation loop beside lodbench's renderer.
-  auto* probe = app.add_subcommand("probe", "Time the minimal tessellation loop (uniform levels) at a config's grid, resolutions, modes and camera");
+  auto* probe = app.add_subcommand(
+      "probe", "Time the minimal tessellation loop (uniform levels) at a config's grid, resolutions, modes and camera");
   ProbeCommandOptions po;
-  probe->add_option("config", po.config, "Config file (grid, resolutions, timing modes, terrain, first path)")->required();
+  probe->add_option("config", po.config, "Config file (grid, resolutions, timing modes, terrain, first path)")
+      ->required();
   probe->add_option("--device", po.device, "Vulkan device: name substring or index (overrides the config)");
-  probe->add_option("--levels", po.levels, "Uniform levels (default: the first scheme's level, else 1)")->delimiter(',');
+  probe->add_option("--levels", po.levels, "Uniform levels (default: the first scheme's level, else 1)")
+      ->delimiter(',');
   probe->add_option("--modes", po.modes, "Timing modes (default: the config's \"timing\")")->delimiter(',');
-  probe->add_flag("--vertex-height", po.vertexHeight,
-                  "Attribution variant: the minimal loop's vertex shader fetches control-point heights as lodbench's does");
-  probe->add_option("--frames", po.frames, "Timed frames per row (median)")->capture_default_str()->check(CLI::Range(1, 100000));
-  probe->add_option("--warmup", po.warmup, "Unrecorded frames before each row")->capture_default_str()->check(CLI::Range(0, 100000));
-  probe->add_option("--frame", po.frame, "Camera: this frame of the config's first path")->capture_default_str()->check(CLI::NonNegativeNumber);
-  probe->add_flag("--compare", po.compare, "Also time lodbench's renderer (uniform scheme) per row: ratio = minimal / lodbench");
-  probe->add_option("--split", po.split, "Split draws like the renderer: auto (lavapipe only), on, off")->capture_default_str();
+  probe->add_flag(
+      "--vertex-height", po.vertexHeight,
+      "Attribution variant: the minimal loop's vertex shader fetches control-point heights as lodbench's does");
+  probe->add_option("--frames", po.frames, "Timed frames per row (median)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  probe->add_option("--warmup", po.warmup, "Unrecorded frames before each row")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  probe->add_option("--frame", po.frame, "Camera: this frame of the config's first path")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  probe->add_flag("--compare", po.compare,
+                  "Also time lodbench's renderer (uniform scheme) per row: ratio = minimal / lodbench");
+  probe->add_option("--split", po.split, "Split draws like the renderer: auto (lavapipe only), on, off")
+      ->capture_default_str();
   probe->add_option("--out", po.out, "Write the JSON here too");
   probe->add_flag("--append", po.append, "Append rows to the --out file");
 
   // load-bench: what a terrain costs before the first frame, stage by stage (cli/load_bench.h).
-  auto* loadBench = app.add_subcommand("load-bench", "Time loading a config's terrains and their preprocessing (normal map, each scheme's), with peak memory, as JSON");
+  auto* loadBench = app.add_subcommand("load-bench",
+                                       "Time loading a config's terrains and their preprocessing (normal map, each "
+                                       "scheme's), with peak memory, as JSON");
   LoadBenchOptions lbo;
-  loadBench->add_option("config", lbo.config, "Config file (terrains, grid, schemes and their first parameter variant)")->required();
+  loadBench->add_option("config", lbo.config, "Config file (terrains, grid, schemes and their first parameter variant)")
+      ->required();
   loadBench->add_option("--out", lbo.out, "Write the JSON here too");
-  loadBench->add_option("--threads", lbo.threads, "Threads for the terrain passes (default: all hardware threads)")->check(CLI::Range(1, 1024));
-  loadBench->add_option("--write-r32f", lbo.writeR32f, "Also write the first terrain's heights as raw little-endian float32 (for GDAL)");
+  loadBench->add_option("--threads", lbo.threads, "Threads for the terrain passes (default: all hardware threads)")
+      ->check(CLI::Range(1, 1024));
+  loadBench->add_option("--write-r32f", lbo.writeR32f,
+                        "Also write the first terrain's heights as raw little-endian float32 (for GDAL)");
 
   // CLI11 answers a mistyped subcommand with "A subcommand is required"; say what is wrong instead.
   if (argc < 2) {

@@ -4,17 +4,16 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "camera/camera_path.h"
-#include "error.h"
-#include "stats.h"
-#include "render/probe.h"
-#include "schemes/registry.h"
 #include "config/config.h"
-#include "results/write.h"
+#include "error.h"
+#include "render/probe.h"
 #include "replay/timing_passes.h"
+#include "results/write.h"
+#include "schemes/registry.h"
+#include "stats.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 
@@ -36,7 +35,8 @@ static double lodbenchMedian(Renderer& r, RenderMode mode, const CameraPose& pos
 int probeCommand(const ProbeCommandOptions& o) {
   Config config = loadConfig(o.config);
   if (!o.device.empty()) config.device = o.device;
-  if (config.terrains.empty() || config.paths.empty()) throw InputError(o.config + ": probe needs a terrain and a path");
+  if (config.terrains.empty() || config.paths.empty())
+    throw InputError(o.config + ": probe needs a terrain and a path");
   if (o.split != "auto" && o.split != "on" && o.split != "off")
     throw InputError("--split '" + o.split + "': expected auto, on or off");
   // The probe's workload: one level everywhere, from the scheme whose main parameter is that level.
@@ -45,7 +45,8 @@ int probeCommand(const ProbeCommandOptions& o) {
   std::vector<int> levels = o.levels;
   if (levels.empty()) {
     levels.push_back(1);
-    if (!config.schemes.empty() && !config.schemes[0].variants.empty() && config.schemes[0].variants[0].count(levelParam))
+    if (!config.schemes.empty() && !config.schemes[0].variants.empty() &&
+        config.schemes[0].variants[0].count(levelParam))
       levels[0] = int(config.schemes[0].variants[0].at(levelParam));
   }
   for (int l : levels)
@@ -61,8 +62,10 @@ int probeCommand(const ProbeCommandOptions& o) {
   CameraPose pose = samplePose(path, config.fps, o.frame, terrain);
   bool split = o.split == "on" || (o.split == "auto" && probeNeedsSplit(ctx));
 
-  json doc = {{"device", ctx.props.deviceName}, {"driver", ctx.driverName + " " + ctx.driverInfo},
-              {"commit", gitCommit()}, {"rows", json::array()}};
+  json doc = {{"device", ctx.props.deviceName},
+              {"driver", ctx.driverName + " " + ctx.driverInfo},
+              {"commit", gitCommit()},
+              {"rows", json::array()}};
   if (o.append && !o.out.empty())
     if (std::ifstream in{o.out}) {
       json old = json::parse(in, nullptr, false);

@@ -11,14 +11,14 @@ namespace lb {
 
 struct ProbeCommandOptions {
   std::string config;
-  std::string device;            // overrides the config's
-  std::vector<int> levels;       // default: the config's first scheme's value of the uniform-level main parameter, else 1
+  std::string device;       // overrides the config's
+  std::vector<int> levels;  // default: the config's first scheme's value of the uniform-level main parameter, else 1
   std::vector<std::string> modes;  // default: the config's "timing"
   int frames = 100, warmup = 20, frame = 0;
   bool compare = false;
-  bool vertexHeight = false;     // attribution variant of the minimal loop (ProbeOptions)
-  std::string split = "auto";    // auto (lavapipe only) | on | off
-  std::string out;               // "" = stdout only
+  bool vertexHeight = false;   // attribution variant of the minimal loop (ProbeOptions)
+  std::string split = "auto";  // auto (lavapipe only) | on | off
+  std::string out;             // "" = stdout only
   bool append = false;
 };
 

@@ -253,8 +253,7 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
     }
   }
   if (!r.exactChecked) {
-    if (o.requireExact)
-      throw InputError("compare --require-exact: counters cannot be compared: " + r.exactSkipReason);
+    if (o.requireExact) throw InputError("compare --require-exact: counters cannot be compared: " + r.exactSkipReason);
     r.notChecked.push_back("exact counters and deterministic measurements were NOT checked: " + r.exactSkipReason);
   }
   if (ctxString(base.context, "device") != ctxString(cand.context, "device"))

@@ -41,8 +41,8 @@ struct TimingCheck {
   // Candidate / baseline: with a verdict, the geometric-mean ratio of the round medians with its
   // t interval at 1 - alpha; without, candidateMs / baselineMs (lo = hi = 0).
   double ratio = 0, lo = 0, hi = 0;
-  double p = 1;                            // t-test on the rounds (1 without a verdict)
-  int nBaseline = 0, nCandidate = 0;       // timing frames (for information: frames are not samples)
+  double p = 1;                       // t-test on the rounds (1 without a verdict)
+  int nBaseline = 0, nCandidate = 0;  // timing frames (for information: frames are not samples)
   int roundsBaseline = 0, roundsCandidate = 0;
   bool pairedRounds = false;
 };
@@ -71,7 +71,7 @@ struct CompareReport {
   nlohmann::json baselineContext, candidateContext;
   CompareOptions options;
   bool exactChecked = false;
-  std::string exactSkipReason;  // why exact checks were skipped
+  std::string exactSkipReason;          // why exact checks were skipped
   std::vector<std::string> notChecked;  // what this verdict did not check, said loudly in every output
   std::vector<std::string> onlyInBaseline, onlyInCandidate;
   std::vector<std::string> notes;     // run-level remarks (different devices, planted slowdown)

@@ -49,7 +49,8 @@ std::vector<RunData> loadRounds(const std::string& dir) {
   std::vector<std::string> rounds;
   for (auto& e : fs::directory_iterator(dir))
     if (e.is_directory() && hasRunJson(e.path().string())) rounds.push_back(e.path().string());
-  if (rounds.empty()) throw InputError(dir + ": neither a run directory (run.json) nor a folder of rounds (*/run.json)");
+  if (rounds.empty())
+    throw InputError(dir + ": neither a run directory (run.json) nor a folder of rounds (*/run.json)");
   // r1, r2, ..., r10 in numeric order.
   std::sort(rounds.begin(), rounds.end(), [](const std::string& a, const std::string& b) {
     return a.size() != b.size() ? a.size() < b.size() : a < b;

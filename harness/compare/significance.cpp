@@ -181,8 +181,7 @@ RoundTest roundTest(const std::vector<double>& b, const std::vector<double>& c, 
     double vb = varianceOf(lb) / double(lb.size()), vc = varianceOf(lc) / double(lc.size());
     se = std::sqrt(vb + vc);
     // Welch-Satterthwaite degrees of freedom.
-    r.df = se > 0 ? (vb + vc) * (vb + vc) /
-                        (vb * vb / double(lb.size() - 1) + vc * vc / double(lc.size() - 1))
+    r.df = se > 0 ? (vb + vc) * (vb + vc) / (vb * vb / double(lb.size() - 1) + vc * vc / double(lc.size() - 1))
                   : double(lb.size() + lc.size() - 2);
   }
   r.ratio = std::exp(diff);

@@ -1,5 +1,6 @@
 #pragma once
-// Statistics for comparing two sets of per-frame timings (lodbench compare, docs/design.md, Reports and regression checks).
+// Statistics for comparing two sets of per-frame timings (lodbench compare, docs/design.md, Reports and regression
+// checks).
 #include <cstdint>
 #include <vector>
 

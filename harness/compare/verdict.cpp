@@ -29,7 +29,9 @@ std::string ctxText(const json& ctx, const char* key) {
   return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : "?";
 }
 
-std::string limitText(const CompareOptions& o) { return num(1 + o.threshold, "%.3g") + "x"; }
+std::string limitText(const CompareOptions& o) {
+  return num(1 + o.threshold, "%.3g") + "x";
+}
 
 }  // namespace
 
@@ -85,7 +87,8 @@ json verdictJson(const CompareReport& r) {
                    {"rounds_candidate", t.roundsCandidate},
                    {"paired_rounds", t.pairedRounds}};
     if (t.verdict == TimingVerdict::NotChecked) timing["reason"] = t.reason;
-    if (t.ratio > 0) timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio}});
+    if (t.ratio > 0)
+      timing.update({{"baseline_ms", t.baselineMs}, {"candidate_ms", t.candidateMs}, {"ratio", t.ratio}});
     if (t.verdict != TimingVerdict::NotChecked) timing.update({{"ci_lo", t.lo}, {"ci_hi", t.hi}, {"p", t.p}});
     json exact = {{"checked", c.exactChecked}, {"differs", c.exactDiffers}};
     if (c.exactDiffers)
@@ -106,30 +109,29 @@ json verdictJson(const CompareReport& r) {
                      {"timing", timing},
                      {"accuracy", acc}});
   }
-  return {
-      {"schema_version", kVerdictSchemaVersion},
-      {"tool", "lodbench compare"},
-      {"tool_version", LODBENCH_VERSION},
-      {"time", isoTimeUtc()},
-      {"verdict", r.exitCode() ? "regression" : "clean"},
-      {"summary", verdictLine(r)},
-      {"exit_code", r.exitCode()},
-      {"regressions", r.regressions()},
-      {"improvements", r.improvements()},
-      {"baseline", side(r.baselineDir, r.baselineContext)},
-      {"candidate", side(r.candidateDir, r.candidateContext)},
-      {"options",
-       {{"threshold", r.options.threshold},
-        {"alpha", r.options.alpha},
-        {"error_tolerance", r.options.errorTolerance},
-        {"require_exact", r.options.requireExact},
-        {"min_rounds", r.options.minRounds}}},
-      {"not_checked", r.notChecked},
-      {"timing_method", kTimingMethod},
-      {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
-      {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
-      {"notes", r.notes},
-      {"cases", cases}};
+  return {{"schema_version", kVerdictSchemaVersion},
+          {"tool", "lodbench compare"},
+          {"tool_version", LODBENCH_VERSION},
+          {"time", isoTimeUtc()},
+          {"verdict", r.exitCode() ? "regression" : "clean"},
+          {"summary", verdictLine(r)},
+          {"exit_code", r.exitCode()},
+          {"regressions", r.regressions()},
+          {"improvements", r.improvements()},
+          {"baseline", side(r.baselineDir, r.baselineContext)},
+          {"candidate", side(r.candidateDir, r.candidateContext)},
+          {"options",
+           {{"threshold", r.options.threshold},
+            {"alpha", r.options.alpha},
+            {"error_tolerance", r.options.errorTolerance},
+            {"require_exact", r.options.requireExact},
+            {"min_rounds", r.options.minRounds}}},
+          {"not_checked", r.notChecked},
+          {"timing_method", kTimingMethod},
+          {"exact", {{"checked", r.exactChecked}, {"skipped_reason", r.exactSkipReason}}},
+          {"unmatched", {{"only_in_baseline", r.onlyInBaseline}, {"only_in_candidate", r.onlyInCandidate}}},
+          {"notes", r.notes},
+          {"cases", cases}};
 }
 
 std::string verdictMarkdown(const CompareReport& r) {

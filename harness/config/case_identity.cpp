@@ -1,7 +1,7 @@
 #include "config/case_identity.h"
 
-#include "sha256.h"
 #include "config/config.h"
+#include "sha256.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
 
@@ -34,7 +34,9 @@ json terrainInputs(const TerrainSpec& t, FileDigests& files) {
   return j;
 }
 
-json pathInputs(const std::string& path, FileDigests& files) { return {{"sha256", fileDigest(path, files)}}; }
+json pathInputs(const std::string& path, FileDigests& files) {
+  return {{"sha256", fileDigest(path, files)}};
+}
 
 json measurementInputs(const Config& c) {
   json passes = json::array();
@@ -48,10 +50,13 @@ json measurementInputs(const Config& c) {
             {"images", {{"frames", c.images.frames}, {"modes", c.images.modes}}}};
   // Added later than the other fields: only when not the default, so digests of earlier runs stay valid.
   const ImageRequest defaults;
-  if (c.images.width != defaults.width || c.images.height != defaults.height) j["images"]["resolution"] = {c.images.width, c.images.height};
+  if (c.images.width != defaults.width || c.images.height != defaults.height)
+    j["images"]["resolution"] = {c.images.width, c.images.height};
   if (c.images.worst != defaults.worst) j["images"]["worst"] = false;
   if (c.match.on())
-    j["match"] = {{"metric", c.match.metric}, {"value", c.match.value}, {"frames", c.match.frames},
+    j["match"] = {{"metric", c.match.metric},
+                  {"value", c.match.value},
+                  {"frames", c.match.frames},
                   {"iterations", c.match.iterations}};
   if (c.testSlowdown > 0) j["test_slowdown"] = c.testSlowdown;  // a planted slowdown changes the timings
   return j;
@@ -59,14 +64,20 @@ json measurementInputs(const Config& c) {
 
 json caseInputs(const json& terrain, const json& path, int width, int height, const std::string& scheme,
                 const json& params, const json& measurement) {
-  return {{"tool_version", LODBENCH_VERSION}, {"scheme", scheme},          {"params", params},
-          {"terrain", terrain},               {"path", path},              {"resolution", {width, height}},
+  return {{"tool_version", LODBENCH_VERSION},
+          {"scheme", scheme},
+          {"params", params},
+          {"terrain", terrain},
+          {"path", path},
+          {"resolution", {width, height}},
           {"measurement", measurement}};
 }
 
 // nlohmann::json keeps object keys sorted and prints doubles round-trip exactly, so the dump is a
 // canonical form.
-std::string inputsDigest(const json& inputs) { return sha256Hex(inputs.dump()); }
+std::string inputsDigest(const json& inputs) {
+  return sha256Hex(inputs.dump());
+}
 
 static std::string brief(const json& v) {
   if (v.is_string() && v.get<std::string>().size() == 64) return v.get<std::string>().substr(0, 8);

@@ -5,9 +5,8 @@
 // are), so a run resumes from another working directory. Resume reuses a finished case only when
 // its digest is unchanged; expandCases uses the digest to keep case ids unique.
 #include <map>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace lb {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -23,21 +23,26 @@ namespace lb {
 
 using nlohmann::json;
 
-static bool isRawTerrain(const TerrainSpec& s) { return s.type == "r16" || s.type == "r32f"; }
-static bool isProceduralTerrain(const TerrainSpec& s) { return s.type == "procedural" || isGeneratedTerrain(s.type); }
+static bool isRawTerrain(const TerrainSpec& s) {
+  return s.type == "r16" || s.type == "r32f";
+}
+static bool isProceduralTerrain(const TerrainSpec& s) {
+  return s.type == "procedural" || isGeneratedTerrain(s.type);
+}
 
 // The terrain's type, and no field that type does not read.
 static void parseTerrainType(const ConfigReader& r, const json& t, const std::string& ptr, TerrainSpec& spec) {
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",  "r32f",
+  static const std::set<std::string> kTypes = {"procedural", "hgt",    "png16", "r16",  "r32f",
                                                "gdal",       "spikes", "cliff", "flat", "voids"};
   if (!kTypes.count(spec.type))
     r.fail(ptr + "/type", "'" + printable(spec.type) +
                               "' is not one of procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids");
   const bool gdal = spec.type == "gdal";
   if (gdal && !haveGdal())
-    r.fail(ptr + "/type", "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
-                          "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
+    r.fail(ptr + "/type",
+           "this build has no GDAL (configured with -DLODBENCH_GDAL=OFF, the default with "
+           "LODBENCH_STATIC_RUNTIME): build with GDAL, or convert the DEM to r32f");
   // A field the type does not read would be silently ignored: reject it instead.
   const bool raw = isRawTerrain(spec), procedural = isProceduralTerrain(spec);
   auto reason = [](const std::string& k) {
@@ -47,11 +52,12 @@ static void parseTerrainType(const ConfigReader& r, const json& t, const std::st
     return "only r16 and r32f take a width and height; other files carry their size";
   };
   for (const std::string k : {"file", "size", "seed", "width", "height", "band", "window", "overview"}) {
-    const bool used = k == "file"                    ? !procedural
-                      : (k == "size" || k == "seed") ? procedural
+    const bool used = k == "file"                       ? !procedural
+                      : (k == "size" || k == "seed")    ? procedural
                       : (k == "width" || k == "height") ? raw
                                                         : gdal;
-    if (t.contains(k) && !used) r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
+    if (t.contains(k) && !used)
+      r.fail(ptr + "/" + k, "terrain type '" + spec.type + "' does not use '" + k + "' (" + reason(k) + ")");
   }
 }
 
@@ -65,12 +71,13 @@ static void parseTerrainFields(const ConfigReader& r, const json& t, const std::
     spec.heightScale = 1.0f;
   }
   if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
-  if (gdal) spec.extent = 0.0f;  // from the file's georeferencing unless "extent" is given
+  if (gdal) spec.extent = 0.0f;                       // from the file's georeferencing unless "extent" is given
   if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
   if (t.contains("detail")) {  // procedural only: "fixed" (8 octaves, the default) or "resolution"
     if (spec.type != "procedural") r.fail(ptr + "/detail", "only procedural terrains take a 'detail'");
     const std::string d = r.string(t["detail"], ptr + "/detail");
-    if (d != "fixed" && d != "resolution") r.fail(ptr + "/detail", "'" + printable(d) + "' is not one of fixed, resolution");
+    if (d != "fixed" && d != "resolution")
+      r.fail(ptr + "/detail", "'" + printable(d) + "' is not one of fixed, resolution");
     spec.detailToSpacing = d == "resolution";
   }
   if (t.contains("extent")) spec.extent = float(r.number(t["extent"], ptr + "/extent", 1e-3, 1e9));
@@ -115,8 +122,9 @@ static std::vector<TerrainSpec> terrainSeeds(const ConfigReader& r, const json& 
 
 static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& t, const std::string& ptr,
                                              const std::string& base) {
-  r.onlyKeys(t, ptr, {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band",
-                      "window", "overview", "detail"});
+  r.onlyKeys(t, ptr,
+             {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band", "window",
+              "overview", "detail"});
   TerrainSpec spec;
   parseTerrainType(r, t, ptr, spec);
   parseTerrainFields(r, t, ptr, base, spec);
@@ -176,7 +184,8 @@ static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::
   }
   const Scheme* scheme = findScheme(e.name);
   if (!scheme)
-    r.fail(ptr + (s.is_string() ? "" : "/name"), "unknown scheme '" + printable(e.name) + "' (known: " + schemeNames() + ")");
+    r.fail(ptr + (s.is_string() ? "" : "/name"),
+           "unknown scheme '" + printable(e.name) + "' (known: " + schemeNames() + ")");
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
   e.variants = {ParamValues{}};
@@ -227,9 +236,10 @@ void parseSchemeSection(const ConfigReader& r, const json& j, Config& c) {
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
   json j = parseJsonStrict(text, file);
   ConfigReader r{file, jsonLineMap(text)};
-  r.onlyKeys(j, "", {"name", "device", "resolution", "resolutions", "grid", "grids", "fps", "warmup_frames", "max_frames",
-                     "repetitions", "case_timeout_s", "terrain", "terrains", "path", "paths", "schemes", "images", "measure", "match",
-                     "description", "timing", "calibration"});
+  r.onlyKeys(j, "", {"name",     "device",        "resolution", "resolutions", "grid",           "grids",
+                     "fps",      "warmup_frames", "max_frames", "repetitions", "case_timeout_s", "terrain",
+                     "terrains", "path",          "paths",      "schemes",     "images",         "measure",
+                     "match",    "description",   "timing",     "calibration"});
   Config c;
   c.file = file;
   c.raw = j;
@@ -250,7 +260,8 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
 
 Config loadConfig(const std::string& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw InputError("config '" + file + "' is a directory, not a JSON file");
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError("config '" + file + "' is a directory, not a JSON file");
   std::ifstream f(file);
   if (!f) throw InputError("cannot open config '" + file + "'");
   std::stringstream ss;
@@ -325,12 +336,15 @@ std::vector<Case> expandCases(const Config& config) {
   std::vector<size_t> tIdx(terrains.size()), pIdx(paths.size());
   for (size_t i = 0; i < tIdx.size(); ++i) tIdx[i] = i;
   for (size_t i = 0; i < pIdx.size(); ++i) pIdx[i] = i;
-  rejectDuplicates(config, tIdx, "terrain", [&](size_t a, size_t b) { return terrains[a] == terrains[b]; },
-                   [&](size_t a) { return labels[a]; });
-  rejectDuplicates(config, pIdx, "camera path", [&](size_t a, size_t b) { return paths[a] == paths[b]; },
-                   [&](size_t a) { return config.paths[a]; });
-  rejectDuplicates(config, config.resolutions, "resolution", [](auto& a, auto& b) { return a == b; },
-                   [](auto& r) { return std::to_string(r.first) + "x" + std::to_string(r.second); });
+  rejectDuplicates(
+      config, tIdx, "terrain", [&](size_t a, size_t b) { return terrains[a] == terrains[b]; },
+      [&](size_t a) { return labels[a]; });
+  rejectDuplicates(
+      config, pIdx, "camera path", [&](size_t a, size_t b) { return paths[a] == paths[b]; },
+      [&](size_t a) { return config.paths[a]; });
+  rejectDuplicates(
+      config, config.resolutions, "resolution", [](auto& a, auto& b) { return a == b; },
+      [](auto& r) { return std::to_string(r.first) + "x" + std::to_string(r.second); });
   struct Variant {
     std::string scheme;
     ParamValues params;
@@ -353,29 +367,29 @@ std::vector<Case> expandCases(const Config& config) {
 
   std::vector<Case> cases;
   for (int grid : config.grids) {
-   nlohmann::json measurement = measurementInputs(config);
-   measurement["grid"] = grid;
-   for (size_t ti = 0; ti < config.terrains.size(); ++ti)
-    for (size_t pi = 0; pi < config.paths.size(); ++pi)
-      for (auto& res : config.resolutions)
-        for (auto& v : variants) {
-          const TerrainSpec& t = config.terrains[ti];
-          const std::string& path = config.paths[pi];
-          Case c{"", v.scheme, v.params, t, labels[ti], path, res.first, res.second};
-          c.id = v.scheme;
-          for (auto& [k, val] : v.params) c.id += "-" + k + formatNumber(val);
-          c.id += "_" + c.terrainLabel + "_" + fileStem(path) + "_" + std::to_string(res.first) + "x" +
-                  std::to_string(res.second);
-          if (config.grids.size() > 1) c.id += "_g" + std::to_string(grid);
-          c.grid = grid;
-          if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
-          nlohmann::json params = nlohmann::json::object();
-          for (auto& [k, val] : v.params) params[k] = val;
-          c.inputs = caseInputs(terrains[ti], paths[pi], res.first, res.second, v.scheme, params, measurement);
-          c.digest = inputsDigest(c.inputs);
-          c.terrainDigest = inputsDigest(terrains[ti]);
-          cases.push_back(std::move(c));
-        }
+    nlohmann::json measurement = measurementInputs(config);
+    measurement["grid"] = grid;
+    for (size_t ti = 0; ti < config.terrains.size(); ++ti)
+      for (size_t pi = 0; pi < config.paths.size(); ++pi)
+        for (auto& res : config.resolutions)
+          for (auto& v : variants) {
+            const TerrainSpec& t = config.terrains[ti];
+            const std::string& path = config.paths[pi];
+            Case c{"", v.scheme, v.params, t, labels[ti], path, res.first, res.second};
+            c.id = v.scheme;
+            for (auto& [k, val] : v.params) c.id += "-" + k + formatNumber(val);
+            c.id += "_" + c.terrainLabel + "_" + fileStem(path) + "_" + std::to_string(res.first) + "x" +
+                    std::to_string(res.second);
+            if (config.grids.size() > 1) c.id += "_g" + std::to_string(grid);
+            c.grid = grid;
+            if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
+            nlohmann::json params = nlohmann::json::object();
+            for (auto& [k, val] : v.params) params[k] = val;
+            c.inputs = caseInputs(terrains[ti], paths[pi], res.first, res.second, v.scheme, params, measurement);
+            c.digest = inputsDigest(c.inputs);
+            c.terrainDigest = inputsDigest(terrains[ti]);
+            cases.push_back(std::move(c));
+          }
   }
   // Readable parts that still coincide (paths with one stem in two folders, parameter values equal
   // to 6 digits): a digest suffix on each.

@@ -1,15 +1,14 @@
 #pragma once
 // A run/sweep config (JSON). Its cases are the cartesian product of schemes x parameter values x
 // camera paths x terrains x resolutions.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "render/scheme.h"
 #include "config/match_spec.h"
 #include "config/measure_spec.h"
 #include "config/timing_spec.h"
+#include "render/scheme.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -20,8 +19,8 @@ struct SchemeEntry {
 };
 
 struct ImageRequest {
-  std::vector<int> frames;          // path frame indices (negative counts from the end)
-  std::vector<std::string> modes;   // shaded | heatmap | wireframe | error | cracks
+  std::vector<int> frames;         // path frame indices (negative counts from the end)
+  std::vector<std::string> modes;  // shaded | heatmap | wireframe | error | cracks
   // Size of the images: a case's frames are drawn at this size with the case's own
   // tessellation (replay/case_images.h); a case of another aspect ratio gets the smallest size of
   // its aspect ratio that covers it.
@@ -30,26 +29,26 @@ struct ImageRequest {
 };
 
 struct Config {
-  std::string file;        // where it was read from (for messages)
+  std::string file;  // where it was read from (for messages)
   std::string name = "run";
-  std::string device;      // "" = default (lavapipe where present)
+  std::string device;  // "" = default (lavapipe where present)
   std::vector<std::pair<int, int>> resolutions{{320, 180}};
   int grid = 32;
   std::vector<int> grids{32};  // "grid" or "grids": one case per grid (scale studies)
   double fps = 30;
   int warmupFrames = 5;
-  int maxFrames = 0;       // 0 = every frame of the path
+  int maxFrames = 0;  // 0 = every frame of the path
   int repetitions = 1;
-  double caseTimeoutS = 0; // a case running longer fails with "timeout" (0 = no limit)
+  double caseTimeoutS = 0;  // a case running longer fails with "timeout" (0 = no limit)
   std::vector<TerrainSpec> terrains;
   std::vector<std::string> paths;  // resolved file paths
   std::vector<SchemeEntry> schemes;
   ImageRequest images;
-  MeasureSpec measure;     // measurement passes (off unless "measure" is given)
-  MatchSpec match;         // matched comparisons (off unless "match" is given)
-  TimingSpec timing;       // timing modes and calibration ("timing", "calibration")
-  nlohmann::json raw;      // the config as written, recorded in results
-  double testSlowdown = 0; // `run --test-slowdown` (tests only, never from JSON): see RenderSettings
+  MeasureSpec measure;      // measurement passes (off unless "measure" is given)
+  MatchSpec match;          // matched comparisons (off unless "match" is given)
+  TimingSpec timing;        // timing modes and calibration ("timing", "calibration")
+  nlohmann::json raw;       // the config as written, recorded in results
+  double testSlowdown = 0;  // `run --test-slowdown` (tests only, never from JSON): see RenderSettings
 };
 
 struct Case {

@@ -18,7 +18,8 @@ std::string inputFile(const ConfigReader& r, const json& v, const std::string& p
                       const char* what) {
   std::string path = resolvePath(base, r.string(v, ptr));
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);
+  if (std::filesystem::is_directory(path, ec))
+    r.fail(ptr, "'" + printable(path, 200) + "' is a directory, not a " + what);
   if (!std::ifstream(path)) r.fail(ptr, "cannot open " + std::string(what) + " '" + printable(path, 200) + "'");
   return path;
 }

@@ -3,10 +3,9 @@
 // "file:line: field '/json/pointer': problem" (tests pin these messages).
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "error.h"
 #include "number_text.h"

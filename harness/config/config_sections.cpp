@@ -86,8 +86,7 @@ std::vector<int> parsePathSection(const ConfigReader& r, const json& j, const st
 
 // images.frames: each frame must lie on every path (a frame past a path's end would be silently
 // left out of that path's cases).
-static void parseImageFrames(const ConfigReader& r, const json& frames, const std::vector<int>& pathFrames,
-                             Config& c) {
+static void parseImageFrames(const ConfigReader& r, const json& frames, const std::vector<int>& pathFrames, Config& c) {
   if (!frames.is_array()) r.fail("/images/frames", "expected an array of frame indices");
   for (size_t i = 0; i < frames.size(); ++i) {
     const std::string ptr = "/images/frames/" + std::to_string(i);

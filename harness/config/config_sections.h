@@ -2,10 +2,9 @@
 // One parser per section of a config file, in the order parseConfig calls them (the order decides
 // which error a config with several mistakes reports first). Each reads its keys of the config
 // object j and fills its part of c; errors name file, line and field (config_reader.h).
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "config/config.h"
 #include "config/config_reader.h"
@@ -21,8 +20,7 @@ void parseFrameSection(const ConfigReader& r, const nlohmann::json& j, Config& c
 // path, paths; returns the frames each path gives at the config's fps and max_frames.
 std::vector<int> parsePathSection(const ConfigReader& r, const nlohmann::json& j, const std::string& baseDir,
                                   Config& c);
-void parseImageSection(const ConfigReader& r, const nlohmann::json& j, const std::vector<int>& pathFrames,
-                       Config& c);
+void parseImageSection(const ConfigReader& r, const nlohmann::json& j, const std::vector<int>& pathFrames, Config& c);
 
 // config.cpp: terrain, terrains (each file is read now).
 void parseTerrainSection(const ConfigReader& r, const nlohmann::json& j, const std::string& baseDir, Config& c);

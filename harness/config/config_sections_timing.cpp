@@ -1,7 +1,6 @@
-#include "config/config_sections.h"
-
 #include <algorithm>
 
+#include "config/config_sections.h"
 #include "number_text.h"
 
 namespace lb {
@@ -12,7 +11,8 @@ void parseTimingSection(const ConfigReader& r, const json& j, Config& c) {
   // Timing modes and clock-control calibration (config/timing_spec.h).
   if (j.contains("timing")) {
     const json& t = j["timing"];
-    if (!t.is_array() || t.empty()) r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
+    if (!t.is_array() || t.empty())
+      r.fail("/timing", "expected a non-empty array of timing modes (shaded, depth, frontend)");
     c.timing.modes.clear();
     for (size_t i = 0; i < t.size(); ++i) {
       std::string m = r.string(t[i], "/timing/" + std::to_string(i));

@@ -3,8 +3,8 @@
 #include <set>
 #include <vector>
 
-#include "error.h"
 #include "config/json_lines.h"
+#include "error.h"
 
 namespace lb {
 namespace {
@@ -44,7 +44,8 @@ json parseTracked(const std::string& text) {
   json::parser_callback_t cb = [&](int depth, json::parse_event_t ev, json& parsed) {
     using E = json::parse_event_t;
     // No config nests deeper than 5; the limit keeps the line scanner (recursive) bounded.
-    if (depth > kMaxDepth) throw StructureError{pointer(), "nested deeper than " + std::to_string(kMaxDepth) + " levels", true};
+    if (depth > kMaxDepth)
+      throw StructureError{pointer(), "nested deeper than " + std::to_string(kMaxDepth) + " levels", true};
     if ((ev == E::object_start || ev == E::array_start || ev == E::value) && !stack.empty() && !stack.back().object)
       ++stack.back().index;
     if (ev == E::object_start || ev == E::array_start) stack.push_back({ev == E::object_start, {}, {}, -1});
@@ -75,7 +76,8 @@ json parseJsonStrict(const std::string& text, const std::string& file) {
         ++col;
       }
     }
-    throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + printable(e.what(), 200));
+    throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
+                     ": invalid JSON: " + printable(e.what(), 200));
   } catch (const json::exception& e) {
     // e.g. out_of_range for a number past double's range (found by fuzzing); it carries no position.
     throw InputError(file + ": invalid JSON: " + printable(e.what(), 200));

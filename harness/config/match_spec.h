@@ -6,10 +6,10 @@
 namespace lb {
 
 struct MatchSpec {
-  std::string metric;  // "" (off) | "triangles" | "err_mean_px"
-  double value = 0;    // target: mean triangles per frame, or mean error in pixels
-  int frames = 8;      // evaluation frames spread evenly over the path
-  int iterations = 12; // bisection steps
+  std::string metric;   // "" (off) | "triangles" | "err_mean_px"
+  double value = 0;     // target: mean triangles per frame, or mean error in pixels
+  int frames = 8;       // evaluation frames spread evenly over the path
+  int iterations = 12;  // bisection steps
   bool on() const { return !metric.empty(); }
 };
 

@@ -14,13 +14,13 @@ struct TimingSpec {
   // other or `maxTries` runs were made; again after the timed frames. Off unless configured.
   bool calibrate = false;
   int level = 16, frames = 5, maxTries = 12;
-  double tolerance = 0.01;  // stable: (max - min) / median of the last 3 runs
-  double driftLimit = 0.02; // flagged: |after / before - 1| above this
+  double tolerance = 0.01;   // stable: (max - min) / median of the last 3 runs
+  double driftLimit = 0.02;  // flagged: |after / before - 1| above this
   // Sustained load before the stability check: a GPU at its idle clock is "stable" too (H100: three
   // runs at 11.74 ms within 0.01%, then 2.91 ms after the case), and its governor raises the clock
   // only after a few hundred ms of continuous work.
   double minLoadS = 1.0;
-  double testDrift = 0;     // tests only (never from JSON): the after-run's time x (1 + testDrift)
+  double testDrift = 0;  // tests only (never from JSON): the after-run's time x (1 + testDrift)
 };
 
 }  // namespace lb

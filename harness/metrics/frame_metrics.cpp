@@ -8,10 +8,26 @@ namespace lb {
 std::vector<std::string> metricColumns() {
   std::vector<std::string> c;
   for (int i = 0; i < LB_HIST_BINS; ++i) c.push_back("hist_" + std::to_string(i));
-  for (const char* n : {"hist_offscreen", "hist_backfacing", "tri_area_mean", "tri_area_median", "tri_frac_under_1px",
-                        "tri_frac_near_target", "err_mean_px", "err_p95_px", "err_max_px", "img_psnr_db", "img_ssim",
-                        "img_mad", "img_frac_over", "cracks_analytic", "cracks_pixels", "pop_mean", "pop_p99",
-                        "pop_changed", "surplus", "saturated_patches"})
+  for (const char* n : {"hist_offscreen",
+                        "hist_backfacing",
+                        "tri_area_mean",
+                        "tri_area_median",
+                        "tri_frac_under_1px",
+                        "tri_frac_near_target",
+                        "err_mean_px",
+                        "err_p95_px",
+                        "err_max_px",
+                        "img_psnr_db",
+                        "img_ssim",
+                        "img_mad",
+                        "img_frac_over",
+                        "cracks_analytic",
+                        "cracks_pixels",
+                        "pop_mean",
+                        "pop_p99",
+                        "pop_changed",
+                        "surplus",
+                        "saturated_patches"})
     c.push_back(n);
   for (const char* n : {"surplus_bound_px", "surplus_p95_px", "surplus_triangles", "surplus_matched"}) c.push_back(n);
   // Every registered scheme's own counters, so all cases share one set of columns.

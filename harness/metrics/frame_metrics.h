@@ -18,7 +18,7 @@ struct FrameMetrics {
   std::vector<std::pair<std::string, double>> values;
   bool hasHistogram = false;
   TriangleHistogram histogram;
-  RgbaImage shaded, reference;    // kept for crack masks and image strips; reference = ground truth
+  RgbaImage shaded, reference;  // kept for crack masks and image strips; reference = ground truth
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
   std::map<std::string, std::string> unavailable;  // pass -> why the device cannot run it (its values are null)

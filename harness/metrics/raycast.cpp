@@ -173,7 +173,8 @@ RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width,
         pixelRay(inv, x, y, width, height, o, d);
         RayHit h = castRay(hf, mip, o, d, 0.0, 1.0);
         size_t i = size_t(y) * size_t(width) + size_t(x);
-        std::array<uint8_t, 4> c = h.hit ? shadeTerrain(normals, hf.extent, float(h.pos.x), float(h.pos.z)) : kClearRgba;
+        std::array<uint8_t, 4> c =
+            h.hit ? shadeTerrain(normals, hf.extent, float(h.pos.x), float(h.pos.z)) : kClearRgba;
         std::copy(c.begin(), c.end(), img.px.begin() + long(i * 4));
         if (distance && h.hit) (*distance)[i] = float(glm::length(h.pos - eye));
       }

@@ -5,9 +5,8 @@
 // bilinear cell it crosses (a quadratic in the ray parameter), front to back, and a max-mipmap
 // quadtree skips the nodes the ray passes above (Tevs, Ihrke, Seidel 2008, "Maximum mipmaps for
 // fast, accurate, and scalable dynamic height field rendering").
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
@@ -29,8 +28,8 @@ MaxMipmap buildMaxMipmap(const Heightfield& hf);
 
 struct RayHit {
   bool hit = false;
-  double t = 0;        // ray parameter of the first hit
-  glm::dvec3 pos{0};   // world position, on the bilinear surface
+  double t = 0;       // ray parameter of the first hit
+  glm::dvec3 pos{0};  // world position, on the bilinear surface
 };
 
 // First intersection of o + t d, t in [tMin, tMax], with the heightfield's surface over

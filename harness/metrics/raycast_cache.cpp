@@ -1,13 +1,13 @@
 #include "metrics/raycast_cache.h"
 
+#include <stb/stb_image.h>
+
 #include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
-
-#include <stb/stb_image.h>
 
 #include "metrics/raycast.h"
 #include "render/image_io.h"
@@ -36,8 +36,9 @@ static std::string cacheKey(const Heightfield& terrain, int width, int height, c
   // Bump the version ("raycast2": normal-map shading) when the ray cast or terrain.frag's
   // shading changes, so old files are not reused.
   key << "raycast2|" << std::hex << th << std::dec << '|' << terrain.width << 'x' << terrain.height << '|'
-      << terrain.extent << '|' << terrain.originX << ',' << terrain.originZ << '|' << width << 'x' << height << '|' << pose.eye.x << ',' << pose.eye.y << ',' << pose.eye.z
-      << '|' << pose.target.x << ',' << pose.target.y << ',' << pose.target.z << '|' << pose.fovDeg;
+      << terrain.extent << '|' << terrain.originX << ',' << terrain.originZ << '|' << width << 'x' << height << '|'
+      << pose.eye.x << ',' << pose.eye.y << ',' << pose.eye.z << '|' << pose.target.x << ',' << pose.target.y << ','
+      << pose.target.z << '|' << pose.fovDeg;
   return key.str();
 }
 
@@ -48,7 +49,8 @@ std::string ReferenceCache::file(const Heightfield& terrain, const std::string& 
   for (char ch : terrainKey) label += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' ? ch : '_';
   std::string key = cacheKey(terrain, width, height, pose);
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hashBytes(key.data(), key.size(), 0x84222325cbf29ce4ull));
+  std::snprintf(hex, sizeof hex, "%016llx",
+                (unsigned long long)hashBytes(key.data(), key.size(), 0x84222325cbf29ce4ull));
   return dir_ + "/" + label + "_" + std::to_string(width) + "x" + std::to_string(height) + "_" + hex + ".png";
 }
 
@@ -57,8 +59,8 @@ const RgbaImage& ReferenceCache::image(Context&, const Heightfield& terrain, con
   return image(terrain, terrainKey, settings.width, settings.height, pose);
 }
 
-const RgbaImage& ReferenceCache::image(const Heightfield& terrain, const std::string& terrainKey, int width,
-                                       int height, const CameraPose& pose) {
+const RgbaImage& ReferenceCache::image(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
+                                       const CameraPose& pose) {
   std::string key = cacheKey(terrain, width, height, pose);
   auto it = images_.find(key);
   if (it != images_.end()) return it->second;

@@ -29,8 +29,8 @@ class ReferenceCache {
   const RgbaImage& image(const Heightfield& terrain, const std::string& terrainKey, int width, int height,
                          const CameraPose& pose);
   SurplusMatcher surplus;  // error-bounded scheme's renderer for the surplus search, kept across the sweep's frames
-  int rayCasts() const { return rayCasts_; }  // images made in this process
-  int loaded() const { return loaded_; }      // images read back from the directory
+  int rayCasts() const { return rayCasts_; }                 // images made in this process
+  int loaded() const { return loaded_; }                     // images read back from the directory
   double rayCastSeconds() const { return rayCastSeconds_; }  // wall time of those ray casts (progress ETA)
   // The file an image of this terrain, resolution and pose is kept in ("" without a directory).
   std::string file(const Heightfield& terrain, const std::string& terrainKey, int width, int height,

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 #include "terrain/normal_map.h"
@@ -16,7 +15,9 @@ float smoothstep(float e0, float e1, float x) {
   return t * t * (3.0f - 2.0f * t);
 }
 
-uint8_t unorm8(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+uint8_t unorm8(float v) {
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
 
 }  // namespace
 
@@ -27,8 +28,8 @@ std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, floa
   float diffuse = std::max(glm::dot(n, light), 0.0f);
   float shade = 0.25f + 0.75f * diffuse;
   float slope = 1.0f - n.y;
-  glm::vec3 base = glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f),
-                            smoothstep(0.15f, 0.35f, slope));
+  glm::vec3 base =
+      glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f), smoothstep(0.15f, 0.35f, slope));
   glm::vec3 c = base * shade;
   return {unorm8(c.r), unorm8(std::max(c.g, 0.02f)), unorm8(c.b), 255};
 }

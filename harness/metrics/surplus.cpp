@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "camera/camera_path.h"
-#include "stats.h"
 #include "schemes/registry.h"
+#include "stats.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -35,7 +35,8 @@ SurplusResult SurplusMatcher::match(Context& ctx, const Heightfield& terrain, co
   if (!renderer_ || terrain_ != &terrain || settings_.width != settings.width || settings_.height != settings.height ||
       settings_.grid != settings.grid) {
     renderer_.reset();
-    renderer_ = std::make_unique<Renderer>(ctx, terrain, RenderSettings{settings.width, settings.height, settings.grid});
+    renderer_ =
+        std::make_unique<Renderer>(ctx, terrain, RenderSettings{settings.width, settings.height, settings.grid});
     renderer_->setScheme(*bounded, {});
     terrain_ = &terrain;
     settings_ = settings;

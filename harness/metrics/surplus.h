@@ -17,9 +17,9 @@ struct CameraPose;
 struct Heightfield;
 
 struct SurplusResult {
-  double surplus = 0;          // NaN when no bound brackets the target (see matched)
-  double boundPx = 0;          // the error-bounded scheme's bound at the match (NaN if none)
-  double boundP95 = 0;         // its measured p95 there (px)
+  double surplus = 0;   // NaN when no bound brackets the target (see matched)
+  double boundPx = 0;   // the error-bounded scheme's bound at the match (NaN if none)
+  double boundP95 = 0;  // its measured p95 there (px)
   double boundTriangles = 0;
   // 1: a bound within 2%; 0: none within 2% (p95 jumps with the discrete levels), so its
   // triangles are interpolated linearly in p95 between the two closest bounds on either side;

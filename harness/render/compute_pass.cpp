@@ -13,11 +13,11 @@ namespace lb {
 void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, VkImageView height, const Image& output,
                     const ComputePush& push) {
   // Owned by locals: released on return and when any step below throws.
-  Bindings bindings = createBindings(
-      ctx,
-      {{LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-       {LB_BINDING_SCHEME_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
-      VK_SHADER_STAGE_COMPUTE_BIT, sizeof(ComputePush));
+  Bindings bindings =
+      createBindings(ctx,
+                     {{LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                      {LB_BINDING_SCHEME_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
+                     VK_SHADER_STAGE_COMPUTE_BIT, sizeof(ComputePush));
   VkDescriptorImageInfo hi{sampler, height, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo oi{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};
   VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
@@ -73,7 +73,8 @@ std::vector<float> readImageRgba32f(Context& ctx, const Image& image, int channe
     imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
                  VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
   });
   std::vector<float> out(size_t(bytes / sizeof(float)));
   std::memcpy(out.data(), staging.mapped, size_t(bytes));

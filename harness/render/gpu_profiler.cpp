@@ -33,13 +33,14 @@ GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
   timestamps_ = vk::Unique(ctx_.device, pool);
   qi.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
   qi.queryCount = uint32_t(slots);
-  qi.pipelineStatistics =
-      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT | VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
-      VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+  qi.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
+                          VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
   VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &pool));
   stats_ = vk::Unique(ctx_.device, pool);
 }
@@ -50,7 +51,8 @@ void GpuProfiler::reset(VkCommandBuffer cmd, int slot) {
 }
 
 void GpuProfiler::timestampTop(VkCommandBuffer cmd, int slot) {
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, uint32_t(slot) * kTimestampsPerSlot + kQueryTop);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_,
+                       uint32_t(slot) * kTimestampsPerSlot + kQueryTop);
 }
 
 void GpuProfiler::timestampBottom(VkCommandBuffer cmd, int slot) {
@@ -58,8 +60,12 @@ void GpuProfiler::timestampBottom(VkCommandBuffer cmd, int slot) {
                        uint32_t(slot) * kTimestampsPerSlot + kQueryBottom);
 }
 
-void GpuProfiler::beginStats(VkCommandBuffer cmd, int slot) { vkCmdBeginQuery(cmd, stats_, uint32_t(slot), 0); }
-void GpuProfiler::endStats(VkCommandBuffer cmd, int slot) { vkCmdEndQuery(cmd, stats_, uint32_t(slot)); }
+void GpuProfiler::beginStats(VkCommandBuffer cmd, int slot) {
+  vkCmdBeginQuery(cmd, stats_, uint32_t(slot), 0);
+}
+void GpuProfiler::endStats(VkCommandBuffer cmd, int slot) {
+  vkCmdEndQuery(cmd, stats_, uint32_t(slot));
+}
 
 GpuSample GpuProfiler::read(int slot) {
   uint64_t ts[kTimestampsPerSlot];

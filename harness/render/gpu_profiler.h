@@ -2,9 +2,9 @@
 // GPU timestamps and pipeline statistics of a ring of frames in flight, in one place: the
 // renderer records begin/end around its draws and reads a slot back after that slot's fence.
 // The probe (render/probe.h) uses the same unit, so both sides of a comparison time alike.
-#include <cstdint>
-
 #include <vulkan/vulkan.h>
+
+#include <cstdint>
 
 #include "vk/unique.h"
 

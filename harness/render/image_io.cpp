@@ -10,7 +10,8 @@
 namespace lb {
 
 void writePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba) {
-  if (rgba.size() < size_t(width) * size_t(height) * 4) throw std::runtime_error("writePng: too few pixels for " + path);
+  if (rgba.size() < size_t(width) * size_t(height) * 4)
+    throw std::runtime_error("writePng: too few pixels for " + path);
   std::string tmp = path + ".tmp";
   if (!stbi_write_png(tmp.c_str(), width, height, 4, rgba.data(), width * 4))
     throw std::runtime_error("cannot write " + path);

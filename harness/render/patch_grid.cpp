@@ -15,9 +15,13 @@ std::vector<glm::vec2> gridVertices(int n, float extent) {
   return v;
 }
 
-uint32_t controlPointCount(Topology t) { return t == Topology::Quad12 ? 12 : t == Topology::Tri3 ? 3 : 4; }
+uint32_t controlPointCount(Topology t) {
+  return t == Topology::Quad12 ? 12 : t == Topology::Tri3 ? 3 : 4;
+}
 
-uint32_t patchCountFor(int n, Topology t) { return uint32_t(n * n) * (t == Topology::Tri3 ? 2u : 1u); }
+uint32_t patchCountFor(int n, Topology t) {
+  return uint32_t(n * n) * (t == Topology::Tri3 ? 2u : 1u);
+}
 
 std::vector<uint32_t> patchIndices(int n, Topology topology) {
   auto v = [n](int i, int j) {
@@ -36,8 +40,8 @@ std::vector<uint32_t> patchIndices(int n, Topology topology) {
       }
       idx.insert(idx.end(), {v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
       if (topology == Topology::Quad12)
-        idx.insert(idx.end(), {v(i - 1, j), v(i - 1, j + 1), v(i, j - 1), v(i + 1, j - 1), v(i + 2, j),
-                               v(i + 2, j + 1), v(i, j + 2), v(i + 1, j + 2)});
+        idx.insert(idx.end(), {v(i - 1, j), v(i - 1, j + 1), v(i, j - 1), v(i + 1, j - 1), v(i + 2, j), v(i + 2, j + 1),
+                               v(i, j + 2), v(i + 1, j + 2)});
     }
   return idx;
 }

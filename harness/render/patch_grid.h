@@ -1,9 +1,8 @@
 #pragma once
 // The base grid: (N+1)^2 vertices over the terrain and the control-point indices of each patch.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "render/scheme.h"
 

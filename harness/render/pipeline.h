@@ -3,11 +3,11 @@
 // so the probe's floor is measured with the renderer's fixed-function state: patch list of vec2
 // control points, no culling, dynamic rendering into an optional colour and an optional depth
 // attachment, one viewport the size of the frame.
+#include <vulkan/vulkan.h>
+
 #include <array>
 #include <string>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "vk/unique.h"
 
@@ -33,8 +33,14 @@ struct TessPipelineDesc {
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no colour attachment
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
-  VkPipelineColorBlendAttachmentState blend{VK_FALSE, VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD,
-                                            VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD, 0xf};
+  VkPipelineColorBlendAttachmentState blend{VK_FALSE,
+                                            VK_BLEND_FACTOR_ZERO,
+                                            VK_BLEND_FACTOR_ZERO,
+                                            VK_BLEND_OP_ADD,
+                                            VK_BLEND_FACTOR_ZERO,
+                                            VK_BLEND_FACTOR_ZERO,
+                                            VK_BLEND_OP_ADD,
+                                            0xf};
   std::array<float, 4> blendConstants{};
 };
 

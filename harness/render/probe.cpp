@@ -6,9 +6,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "stats.h"
 #include "render/patch_grid.h"
 #include "render/pipeline.h"
+#include "stats.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
 #include "vk/resources.h"
@@ -68,7 +68,8 @@ void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOpt
   uploadImage(ctx, o.height, terrain.h.data(), terrain.h.size() * sizeof(float));
   auto verts = gridVertices(opt.grid, terrain.extent);
   auto idx = patchIndices(opt.grid, Topology::Quad4);
-  o.vertices = createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  o.vertices =
+      createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   o.indices = createBufferWithData(ctx, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   o.sampler = createSampler(ctx, VK_FILTER_NEAREST);
   o.bindings = createBindings(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_ALL_GRAPHICS}},
@@ -87,7 +88,9 @@ void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOpt
 
 }  // namespace
 
-bool probeNeedsSplit(const Context& ctx) { return ctx.driverName.find("llvmpipe") != std::string::npos; }
+bool probeNeedsSplit(const Context& ctx) {
+  return ctx.driverName.find("llvmpipe") != std::string::npos;
+}
 
 ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose& pose, const ProbeOptions& opt) {
   if (opt.mode != RenderMode::Shaded && opt.mode != RenderMode::Depth && opt.mode != RenderMode::Frontend)

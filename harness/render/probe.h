@@ -31,7 +31,7 @@ struct ProbeOptions {
 struct ProbeResult {
   std::vector<double> gpuMs;  // per timed frame
   double medianMs = 0;
-  PipelineStats stats;        // of the last frame
+  PipelineStats stats;  // of the last frame
   uint32_t draws = 0;
 };
 

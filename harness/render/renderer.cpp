@@ -1,13 +1,12 @@
 // The frame loop: uniforms, command recording with split draws, queries read after the fence.
 #include "render/renderer.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
 
 #include "camera/camera_path.h"
 #include "render/compute_pass.h"
@@ -82,24 +81,26 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
   const bool depth = mode != RenderMode::Frontend;  // frontend discards all primitives: no attachments
   // Earlier frames may still write these targets: order after them, discard old contents.
-  if (colour) imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
-               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  if (depth) imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  if (colour)
+    imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  if (depth)
+    imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
   VkRenderingAttachmentInfo ca{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   ca.imageView = target.view;
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   ca.clearValue.color = {{1.0f, 0.0f, 1.0f, 1.0f}};  // magenta: no terrain pixel has it
-  if (settings_.sky)  // images for people only: crack detection needs the magenta
+  if (settings_.sky)                                 // images for people only: crack detection needs the magenta
     ca.clearValue.color = {{kSkyRgba[0] / 255.0f, kSkyRgba[1] / 255.0f, kSkyRgba[2] / 255.0f, 1.0f}};
   if (mode == RenderMode::Error) ca.clearValue.color = {{-1.0f, 0.0f, 0.0f, 0.0f}};  // error is never negative
   VkRenderingAttachmentInfo da{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -175,10 +176,12 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
     // The geometry stage may only be named where the device enables geometry shaders.
     VkPipelineStageFlags2 writers = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
     if (ctx_.enabledFeatures.geometryShader) writers |= VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
-    memoryBarrier(cmd, writers, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    memoryBarrier(cmd, writers, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
   }
   if (slot.readback) {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
   }
   VK_CHECK(vkEndCommandBuffer(cmd));
 }
@@ -191,7 +194,7 @@ void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraP
   nextSlot_ = (nextSlot_ + 1) % kSlots;
   Slot& slot = slots_[size_t(si)];
   if (slot.busy) collect(si);  // the frame kSlots ago; the one just before keeps running
-  double ownStart = nowMs();  // the harness's own cost starts after the wait for the old frame
+  double ownStart = nowMs();   // the harness's own cost starts after the wait for the old frame
   fillUniforms(si, view, lod);
   record(slot, si, mode, capture);
   VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};

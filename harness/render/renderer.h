@@ -4,11 +4,10 @@
 // pipeline statistics are read after each frame's fence without stalling the next frame.
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/gpu_profiler.h"
 #include "render/scheme.h"
@@ -105,8 +104,8 @@ class Renderer {
     scheme_->validate(params_);
   }
   // Records and submits a frame. `lod` is the camera the LOD decision uses (normally == view).
-  void submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod,
-                   RenderMode mode = RenderMode::Shaded, bool capture = false);
+  void submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod, RenderMode mode = RenderMode::Shaded,
+                   bool capture = false);
   // Results of frames whose fences have been waited on, in submission order.
   std::vector<FrameResult> takeCompleted();
   void finish();  // wait for every frame in flight

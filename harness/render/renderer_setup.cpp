@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "render/compute_pass.h"
 #include "error.h"
+#include "render/compute_pass.h"
 #include "render/patch_grid.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
@@ -43,7 +43,8 @@ Renderer::Renderer(Context& ctx, const Heightfield& terrain, const RenderSetting
     : ctx_(ctx), terrain_(terrain), settings_(settings), profiler_(ctx, kSlots) {
   if (settings.width < 16 || settings.height < 16 || settings.width > 8192 || settings.height > 8192)
     throw std::runtime_error("resolution must be within 16..8192 pixels per side");
-  if (settings.grid < 1 || settings.grid > 1024) throw std::runtime_error("grid must be within 1..1024 patches per side");
+  if (settings.grid < 1 || settings.grid > 1024)
+    throw std::runtime_error("grid must be within 1..1024 patches per side");
   createTargets();
   createDescriptors();
   VkCommandBuffer cmds[kSlots];
@@ -64,10 +65,11 @@ void Renderer::createTargets() {
   auto w = uint32_t(settings_.width), h = uint32_t(settings_.height);
   color_ = createImage(ctx_, w, h, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                        VK_IMAGE_ASPECT_COLOR_BIT);
-  depth_ = createImage(ctx_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  errorTarget_ = createImage(ctx_, w, h, kErrorFormat,
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                             VK_IMAGE_ASPECT_COLOR_BIT);
+  depth_ =
+      createImage(ctx_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  errorTarget_ =
+      createImage(ctx_, w, h, kErrorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                  VK_IMAGE_ASPECT_COLOR_BIT);
   readback_ = createBuffer(ctx_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   height_ = createImage(ctx_, uint32_t(terrain_.width), uint32_t(terrain_.height), VK_FORMAT_R32_SFLOAT,
@@ -113,8 +115,8 @@ void Renderer::createGrid() {
   vertices_ = createBufferWithData(ctx_, g.vertices.data(), bytes(g.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   indices_ = createBufferWithData(ctx_, g.indices.data(), bytes(g.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   bounds_ = createBufferWithData(ctx_, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  schemeBuf_ = createBufferWithData(ctx_, g.schemeBuffer.data(), bytes(g.schemeBuffer),
-                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  schemeBuf_ =
+      createBufferWithData(ctx_, g.schemeBuffer.data(), bytes(g.schemeBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   capture_ = createBuffer(ctx_, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memset(capture_.mapped, 0, size_t(capture_.size));
@@ -124,16 +126,17 @@ void Renderer::createGrid() {
 
 void Renderer::createDescriptors() {
   const VkShaderStageFlags all = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
-  bindings_ = createBindings(ctx_,
-                             {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
-                              {LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
-                              {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
-                              {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                              {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                              {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                              {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                              {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
-                             all, sizeof(DrawPush));
+  bindings_ =
+      createBindings(ctx_,
+                     {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
+                      {LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
+                      {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
+                      {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                     all, sizeof(DrawPush));
 }
 
 void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
@@ -164,7 +167,8 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     SchemeTexture tex = scheme.preprocessGrid(terrain_, params_, settings_.grid);
     if (tex.width == 0) tex = {1, 1, {0, 0, 0, 0}};
     if (tex.channels != 1 && tex.channels != 4)
-      throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of " + std::to_string(tex.channels) + " channels");
+      throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of " +
+                             std::to_string(tex.channels) + " channels");
     if (tex.rgba.size() != size_t(tex.width) * size_t(tex.height) * size_t(tex.channels))
       throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of the wrong size");
     const VkFormat format = tex.channels == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;

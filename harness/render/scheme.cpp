@@ -39,8 +39,8 @@ ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
     if (!spec) {
       std::string known;
       for (auto& p : info.params) known += (known.empty() ? "" : ", ") + p.name;
-      throw InputError("scheme '" + info.name + "' has no parameter '" + name + "' (parameters: " +
-                       (known.empty() ? "none" : known) + ")");
+      throw InputError("scheme '" + info.name + "' has no parameter '" + name +
+                       "' (parameters: " + (known.empty() ? "none" : known) + ")");
     }
     if (!std::isfinite(value) || value < spec->min || value > spec->max)
       throw InputError("scheme '" + info.name + "' parameter '" + name + "' = " + numberText(value) + " is outside [" +
@@ -66,18 +66,24 @@ SchemeTexture redTexture(int width, int height, std::vector<float> red) {
 
 const char* partitioningName(Partitioning p) {
   switch (p) {
-    case Partitioning::Integer: return "integer";
-    case Partitioning::FractionalEven: return "fractional_even";
-    case Partitioning::FractionalOdd: return "fractional_odd";
+    case Partitioning::Integer:
+      return "integer";
+    case Partitioning::FractionalEven:
+      return "fractional_even";
+    case Partitioning::FractionalOdd:
+      return "fractional_odd";
   }
   return "?";
 }
 
 const char* topologyName(Topology t) {
   switch (t) {
-    case Topology::Quad4: return "quad4";
-    case Topology::Quad12: return "quad12";
-    case Topology::Tri3: return "tri3";
+    case Topology::Quad4:
+      return "quad4";
+    case Topology::Quad12:
+      return "quad12";
+    case Topology::Tri3:
+      return "tri3";
   }
   return "?";
 }

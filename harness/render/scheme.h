@@ -1,12 +1,11 @@
 #pragma once
 // The scheme interface (docs/design.md, Schemes): everything that differs between LOD methods.
 // Terrain, camera, shading and instrumentation belong to the renderer and are shared.
+#include <glm/vec2.hpp>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 namespace lb {
 
@@ -42,8 +41,8 @@ struct SchemeCounter {
 
 struct SchemeInfo {
   std::string name;
-  std::string description;  // one line
-  std::string seed;         // source document and section it follows
+  std::string description;        // one line
+  std::string seed;               // source document and section it follows
   std::vector<ParamSpec> params;  // each packed into FrameUniforms::params at its slot
   // The parameter that trades quality for cost: a sweep's front varies it and a matched
   // comparison searches it. "" = none (a scheme without parameters).
@@ -51,9 +50,9 @@ struct SchemeInfo {
   MainParamRole mainParamRole = MainParamRole::Knob;
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
-  std::string tesc;                       // shader stem: shaders/<tesc>.tesc
-  std::string tese = "terrain_quad";      // shared evaluation shader stem
-  bool culls = false;                     // may output factor 0 for patches outside the frustum
+  std::string tesc;                   // shader stem: shaders/<tesc>.tesc
+  std::string tese = "terrain_quad";  // shared evaluation shader stem
+  bool culls = false;                 // may output factor 0 for patches outside the frustum
   // Compute preprocessing: shaders/<compute>.comp writes the scheme texture once in setScheme
   // (instead of preprocess()); empty = none.
   std::string compute;

@@ -8,11 +8,10 @@
 // Scheme::update is const), so a frame drawn again from its path pose is the frame measured.
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "camera/camera_path.h"
 #include "config/config.h"

@@ -6,7 +6,7 @@ namespace lb {
 class CaseProgress {
  public:
   enum class Phase { Setup, Timing, Measure, Images };
-  virtual void phase(Phase p) = 0;             // the case enters phase p
+  virtual void phase(Phase p) = 0;              // the case enters phase p
   virtual void frame(int done, int total) = 0;  // progress within the current phase
 
  protected:

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "camera/camera_path.h"
-#include "render/renderer.h"
 #include "config/config.h"
+#include "render/renderer.h"
 
 namespace lb {
 
@@ -64,8 +64,10 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
       double mid = 0.5 * (lo + hi);
       if (ps->integer && std::round(fromX(hi)) - std::round(fromX(lo)) <= 1) break;
       double fm = evaluate(fromX(mid));
-      if ((fm < target) == increasing) lo = mid, flo = fm;
-      else hi = mid, fhi = fm;
+      if ((fm < target) == increasing)
+        lo = mid, flo = fm;
+      else
+        hi = mid, fhi = fm;
     }
     bool takeLo = std::abs(target - flo) <= std::abs(target - fhi);
     out.value = fromX(takeLo ? lo : hi);

@@ -16,11 +16,11 @@ struct Heightfield;
 struct CameraPath;
 
 struct MatchResult {
-  std::string param;     // the parameter searched ("" when the scheme has none)
-  double value = 0;      // chosen value
-  double achieved = 0;   // the metric at that value
+  std::string param;    // the parameter searched ("" when the scheme has none)
+  double value = 0;     // chosen value
+  double achieved = 0;  // the metric at that value
   int evaluations = 0;
-  bool reachable = true; // false when the target lies outside the parameter's range
+  bool reachable = true;  // false when the target lies outside the parameter's range
 };
 
 // The parameter a match searches is the scheme's SchemeInfo::mainParam; "" = none, nothing is searched.

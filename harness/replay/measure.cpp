@@ -3,14 +3,14 @@
 #include <cmath>
 #include <sstream>
 
-#include "metrics/cracks.h"
 #include "error.h"
+#include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/popping.h"
-#include "stats.h"
 #include "render/image_io.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
+#include "stats.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -71,7 +71,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     for (float v : m.errorMap)
       if (v >= 0) e.push_back(v);
     Summary s = summarize(e);
-    if (e.empty()) m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
+    if (e.empty())
+      m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);

@@ -23,8 +23,12 @@ using nlohmann::json;
 
 static std::atomic<bool> gStop{false};
 
-void requestStop() { gStop = true; }
-void clearStop() { gStop = false; }
+void requestStop() {
+  gStop = true;
+}
+void clearStop() {
+  gStop = false;
+}
 
 RenderMode parseRenderMode(const std::string& name) {
   if (name == "shaded") return RenderMode::Shaded;
@@ -55,7 +59,9 @@ struct TerrainStageCosts {
 };
 static std::map<std::string, TerrainStageCosts> gStageCosts;
 
-void clearStageCosts() { gStageCosts.clear(); }
+void clearStageCosts() {
+  gStageCosts.clear();
+}
 
 static void recordStageCosts(const Case& c, double loadS, const Renderer::SetupCosts& setup) {
   TerrainStageCosts& t = gStageCosts[c.terrainLabel];
@@ -88,9 +94,9 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (config.match.on()) {
     MatchResult m = matchParameter(ctx, *scheme, params, terrain, path, config, c);
     if (!m.param.empty()) params[m.param] = m.value;
-    result.matched = {{"metric", config.match.metric}, {"target", config.match.value}, {"param", m.param},
-                      {"value", m.value}, {"achieved", m.achieved}, {"evaluations", m.evaluations},
-                      {"reachable", m.reachable}};
+    result.matched = {
+        {"metric", config.match.metric}, {"target", config.match.value}, {"param", m.param},        {"value", m.value},
+        {"achieved", m.achieved},        {"evaluations", m.evaluations}, {"reachable", m.reachable}};
   }
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, params);

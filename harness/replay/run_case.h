@@ -2,10 +2,9 @@
 // Replays one case: loads its terrain and path, runs its timed frames, timing-mode replays,
 // measurement passes and images, in that order, and returns what it measured (results/write.h
 // records it). The timed frames come first, so nothing else perturbs them.
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "config/config.h"
 #include "metrics/raycast_cache.h"

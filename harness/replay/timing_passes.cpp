@@ -1,15 +1,15 @@
 // Timing-mode replays, their counter cross-check, and clock-control calibration.
 #include "replay/timing_passes.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "camera/camera_path.h"
 #include "error.h"
-#include "stats.h"
 #include "schemes/registry.h"
+#include "stats.h"
 
 namespace lb {
 
@@ -44,8 +44,10 @@ std::string compareTessellationCounters(const std::vector<FrameResult>& shaded, 
   for (size_t i = 0; i < shaded.size(); ++i) {
     const PipelineStats &a = shaded[i].stats, &b = other[i].stats;
     const std::pair<const char*, std::pair<uint64_t, uint64_t>> counters[] = {
-        {"ia_vertices", {a.iaVertices, b.iaVertices}},   {"ia_primitives", {a.iaPrimitives, b.iaPrimitives}},
-        {"vs_invocations", {a.vsInvocations, b.vsInvocations}}, {"patches", {a.tcsPatches, b.tcsPatches}},
+        {"ia_vertices", {a.iaVertices, b.iaVertices}},
+        {"ia_primitives", {a.iaPrimitives, b.iaPrimitives}},
+        {"vs_invocations", {a.vsInvocations, b.vsInvocations}},
+        {"patches", {a.tcsPatches, b.tcsPatches}},
         {"tes_invocations", {a.tesInvocations, b.tesInvocations}}};
     for (auto& [name, v] : counters)
       if (v.first != v.second)
@@ -67,8 +69,8 @@ static RenderSettings calibrationSettings(RenderSettings s) {
   return s;
 }
 
-Calibrator::Calibrator(Context& ctx, const Heightfield& terrain, const RenderSettings& settings,
-                       const TimingSpec& spec, const CameraPose& pose)
+Calibrator::Calibrator(Context& ctx, const Heightfield& terrain, const RenderSettings& settings, const TimingSpec& spec,
+                       const CameraPose& pose)
     : renderer_(ctx, terrain, calibrationSettings(settings)), spec_(spec), pose_(pose) {
   const Scheme& uniform = *schemeWithRole(MainParamRole::UniformLevel);
   renderer_.setScheme(uniform, {{uniform.info().mainParam, spec.level}});

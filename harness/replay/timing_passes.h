@@ -4,14 +4,13 @@
 // clock-control calibration run before and after the timed frames.
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "camera/camera_path.h"
-#include "render/renderer.h"
 #include "config/timing_spec.h"
+#include "render/renderer.h"
 
 namespace lb {
 
@@ -46,7 +45,7 @@ class Calibrator {
  public:
   Calibrator(Context& ctx, const Heightfield& terrain, const RenderSettings& settings, const TimingSpec& spec,
              const CameraPose& pose);
-  double runOnce();            // median GPU ms over spec.frames frames
+  double runOnce();              // median GPU ms over spec.frames frames
   CalibrationRun untilStable();  // runs until calibrationStable() or spec.maxTries runs
 
  private:

@@ -1,5 +1,5 @@
-// Charts over frames (docs/design.md, Reports and regression checks): triangle-size histograms from the summaries' summed
-// bins, and per-frame timelines along each camera path from the case files.
+// Charts over frames (docs/design.md, Reports and regression checks): triangle-size histograms from the summaries'
+// summed bins, and per-frame timelines along each camera path from the case files.
 #include <cmath>
 
 #include "report/charts.h"
@@ -48,9 +48,10 @@ json timelineSpec(const ReportRun& run, const Series& s, const std::string& ySca
   // their 2s and 5s (Vega's default draws every 1..9 x 10^k).
   if (yScale == "log") {
     y["title"] = std::string(s.axis) + " (log)";
-    y["axis"] = {{"values", {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500,
-                             1e3, 2e3, 5e3, 1e4, 2e4, 5e4, 1e5, 2e5, 5e5, 1e6, 2e6, 5e6, 1e7, 2e7, 5e7, 1e8}},
-                 {"format", "~f"}};
+    y["axis"] = {
+        {"values", {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1,   2,   5,   10,  20,  50,  100, 200,
+                    500,   1e3,   2e3,   5e3,  1e4,  2e4,  5e4, 1e5, 2e5, 5e5, 1e6, 2e6, 5e6, 1e7, 2e7, 5e7, 1e8}},
+        {"format", "~f"}};
   }
   json encoding = {
       {"x", x},

@@ -29,7 +29,9 @@ constexpr Metric kMetrics[] = {
     {"triangles", "triangles", "median", "triangles, median", "triangles/frame, median"},
 };
 
-std::string resolutionOf(const ReportCase& c) { return std::to_string(c.width) + "x" + std::to_string(c.height); }
+std::string resolutionOf(const ReportCase& c) {
+  return std::to_string(c.width) + "x" + std::to_string(c.height);
+}
 std::string placeOf(const ReportCase& c) {  // the camera path's stem
   if (c.path.empty()) return "(no path)";
   std::string name = c.path.substr(c.path.find_last_of('/') + 1);
@@ -77,9 +79,15 @@ Chart build(const ReportRun& run, const Variable& v, const std::vector<Point>& p
   for (auto& p : points) {
     if (std::find(rows.begin(), rows.end(), p.row) == rows.end()) rows.push_back(p.row);
     if (std::find(variants.begin(), variants.end(), p.variant) == variants.end()) variants.push_back(p.variant);
-    json row = {{"case_id", p.c->id}, {"scheme", p.c->scheme},      {"params", p.c->paramsLabel},
-                {"row", p.row},       {"series", p.series},         {"variant", p.variant},
-                {"x", p.x},           {"resolution", resolutionOf(*p.c)}, {"grid", p.c->grid}};
+    json row = {{"case_id", p.c->id},
+                {"scheme", p.c->scheme},
+                {"params", p.c->paramsLabel},
+                {"row", p.row},
+                {"series", p.series},
+                {"variant", p.variant},
+                {"x", p.x},
+                {"resolution", resolutionOf(*p.c)},
+                {"grid", p.c->grid}};
     for (const Metric& m : kMetrics) {
       auto val = summaryStat(p.c->summary, m.key, m.stat);
       row[m.field] = val ? json(*val) : json(nullptr);
@@ -96,9 +104,14 @@ Chart build(const ReportRun& run, const Variable& v, const std::vector<Point>& p
     for (const Metric& m : kMetrics) {
       if (!yOf.count({r, m.field})) continue;
       json y = positionEncoding(m.field, m.axis, niceDomain(yOf[{r, m.field}]));
-      json enc = {{"x", x}, {"y", y}, {"color", schemeColor(run)}, {"detail", {{"field", "series"}, {"type", "nominal"}}}};
+      json enc = {
+          {"x", x}, {"y", y}, {"color", schemeColor(run)}, {"detail", {{"field", "series"}, {"type", "nominal"}}}};
       if (variants.size() > 1)
-        enc["strokeDash"] = {{"field", "variant"}, {"type", "nominal"}, {"title", "line"}, {"sort", variants}, {"legend", {{"labelLimit", 400}, {"symbolStrokeColor", "#444"}}}};
+        enc["strokeDash"] = {{"field", "variant"},
+                             {"type", "nominal"},
+                             {"title", "line"},
+                             {"sort", variants},
+                             {"legend", {{"labelLimit", 400}, {"symbolStrokeColor", "#444"}}}};
       json pointsEnc = {{"x", x},
                         {"y", y},
                         {"color", schemeColor(run)},
@@ -111,8 +124,7 @@ Chart build(const ReportRun& run, const Variable& v, const std::vector<Point>& p
                         {"height", 240},
                         {"transform", {filter}},
                         {"layer",
-                         {{{"mark", {{"type", "line"}, {"strokeWidth", 1.75}}},
-                           {"encoding", enc}},
+                         {{{"mark", {{"type", "line"}, {"strokeWidth", 1.75}}}, {"encoding", enc}},
                           {{"mark", {{"type", "point"}, {"filled", true}, {"size", 60}}}, {"encoding", pointsEnc}}}}});
     }
     vrows.push_back({{"hconcat", panels}});
@@ -150,8 +162,9 @@ std::vector<Chart> scaleCharts(const ReportRun& run) {
     points.push_back({c, double(c->grid), held, c->scheme + "|" + variant + "|" + held, c->scheme + " " + variant});
   }
   if (auto p = varying(points); !p.empty())
-    charts.push_back(build(run, {"scale_grid", "Cost vs patch grid", "patch grid, patches per side",
-                                 "one line per scheme and setting, everything but the grid held; log2 axis", false},
+    charts.push_back(build(run,
+                           {"scale_grid", "Cost vs patch grid", "patch grid, patches per side",
+                            "one line per scheme and setting, everything but the grid held; log2 axis", false},
                            p, log2Domain));
 
   // Against the resolution (pixels per frame): ticks named by the resolutions themselves.
@@ -169,12 +182,13 @@ std::vector<Chart> scaleCharts(const ReportRun& run) {
     auto pixels = [&](const std::vector<double>& xs) {
       AxisDomain d = log2Domain(xs);
       for (auto it = names.rbegin(); it != names.rend(); ++it)
-        d.labelExpr = "datum.value == " + numberLabel(it->first) + " ? '" + it->second + "' : " +
-                      (d.labelExpr.empty() ? "datum.label" : d.labelExpr);
+        d.labelExpr = "datum.value == " + numberLabel(it->first) + " ? '" + it->second +
+                      "' : " + (d.labelExpr.empty() ? "datum.label" : d.labelExpr);
       return d;
     };
-    charts.push_back(build(run, {"scale_resolution", "Cost vs resolution", "resolution, pixels per frame",
-                                 "one line per scheme and setting, everything but the resolution held; log axis", false},
+    charts.push_back(build(run,
+                           {"scale_resolution", "Cost vs resolution", "resolution, pixels per frame",
+                            "one line per scheme and setting, everything but the resolution held; log axis", false},
                            p, pixels));
   }
 
@@ -190,7 +204,8 @@ std::vector<Chart> scaleCharts(const ReportRun& run) {
                          (resolutions.size() > 1 ? ", " + resolutionOf(*c) : "") +
                          (grids.size() > 1 ? ", grid " + std::to_string(c->grid) : "") +
                          (others.empty() ? "" : ", " + others);
-      points.push_back({c, value.get<double>(), name + " (" + c->scheme + ")", c->scheme + "|" + name + "|" + held, held});
+      points.push_back(
+          {c, value.get<double>(), name + " (" + c->scheme + ")", c->scheme + "|" + name + "|" + held, held});
     }
   if (auto p = varying(points); !p.empty()) {
     Variable v{"scale_param", "Cost vs each scheme's parameter", "",

@@ -23,9 +23,8 @@ struct ErrorKind {
   const char* label;  // panel title and data column "error"
   const char* axis;   // x-axis title: exactly what is plotted
 };
-constexpr ErrorKind kErrors[] = {
-    {"err_mean_px", "mean error", "mean error (px), averaged over measured frames"},
-    {"err_p95_px", "p95 error", "p95 error (px), averaged over measured frames"}};
+constexpr ErrorKind kErrors[] = {{"err_mean_px", "mean error", "mean error (px), averaged over measured frames"},
+                                 {"err_p95_px", "p95 error", "p95 error (px), averaged over measured frames"}};
 
 struct Cost {
   const char* id;
@@ -42,7 +41,9 @@ constexpr Cost kCosts[] = {
      "\u2199 better (fewer triangles, more accurate)"},
 };
 
-json fieldEquals(const char* field, const std::string& value) { return {{"field", field}, {"equal", value}}; }
+json fieldEquals(const char* field, const std::string& value) {
+  return {{"field", field}, {"equal", value}};
+}
 
 // One panel: the rows of one path and error kind, on their own axes.
 json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const std::string& scenario,
@@ -60,9 +61,11 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
   json layers = json::array();
   // Each scheme's Pareto front (the error-bounded scheme's own line is the dashed reference below).
   // Chart rows of that scheme carry "errbound": true.
-  layers.push_back({{"transform", {cell, {{"filter", "datum.on_front && !datum.errbound"}}}},
-                    {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.85}}},
-                    {"encoding", {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}});
+  layers.push_back(
+      {{"transform", {cell, {{"filter", "datum.on_front && !datum.errbound"}}}},
+       {"mark", {{"type", "line"}, {"strokeWidth", 2}, {"opacity", 0.85}}},
+       {"encoding",
+        {{"x", x}, {"y", y}, {"color", color}, {"order", {{"field", "err_px"}, {"type", "quantitative"}}}}}});
   // The error-bounded scheme's sweep in bound order: the fewest triangles it needs for each error
   // level, the reference every scheme is read against. Only when present: an empty layer makes
   // Vega warn of infinite extents.
@@ -72,10 +75,11 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
          {"mark",
           {{"type", "line"}, {"strokeDash", {6, 4}}, {"strokeWidth", 1.5}, {"color", schemeColour(boundScheme)}}},
          {"encoding", {{"x", x}, {"y", y}, {"order", {{"field", "sweep"}, {"type", "quantitative"}}}}}});
-  layers.push_back({{"transform", {cell}},
-                    {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
-                    {"encoding",
-                     {{"x", x}, {"y", y}, {"color", color}, {"shape", schemeShapeEncoding(run)}, {"tooltip", tooltip}}}});
+  layers.push_back(
+      {{"transform", {cell}},
+       {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
+       {"encoding",
+        {{"x", x}, {"y", y}, {"color", color}, {"shape", schemeShapeEncoding(run)}, {"tooltip", tooltip}}}});
   layers.push_back({{"data", {{"values", json::array({json::object()})}}},
                     {"mark",
                      {{"type", "text"},
@@ -102,7 +106,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     chart.section = "speed";
     chart.title = cost.title;
     std::vector<std::string> unmeasured;
-    std::map<std::string, std::vector<double>> costsOf;               // by scenario: one y axis per row
+    std::map<std::string, std::vector<double>> costsOf;                         // by scenario: one y axis per row
     std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
     const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
     const std::string boundScheme = bounded ? bounded->info().name : "",
@@ -169,14 +173,13 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                               boundIn.count(s) > 0, shown > 1));
       rows.push_back({{"hconcat", row}});
     }
-    json subtitle = json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
-                                 "the scheme is both cheaper and more accurate)"});
+    json subtitle =
+        json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
+                     "the scheme is both cheaper and more accurate)"});
     if (!boundIn.empty())
       subtitle.push_back("dashed: " + boundScheme + "'s sweep over " + boundParam + ", the reference front");
     chart.spec = {{"$schema", kVegaLiteSchema},
-                  {"title",
-                   {{"text", cost.title},
-                    {"subtitle", subtitle}}},
+                  {"title", {{"text", cost.title}, {"subtitle", subtitle}}},
                   {"data", {{"url", "data/" + chart.dataName + ".json"}}},
                   {"vconcat", rows},
                   {"resolve", {{"scale", {{"color", "shared"}, {"shape", "shared"}}}}}};

@@ -70,13 +70,15 @@ std::vector<std::string> chartSchemes(const ReportRun& run) {
 json schemeColor(const ReportRun& run) {
   std::vector<std::string> domain = chartSchemes(run), range;
   for (auto& s : domain) range.push_back(schemeColour(s));
-  return {{"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", domain}, {"range", range}}}};
+  return {
+      {"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", domain}, {"range", range}}}};
 }
 
 json schemeShapeEncoding(const ReportRun& run) {
   std::vector<std::string> domain = chartSchemes(run), range;
   for (auto& s : domain) range.push_back(schemeShape(s));
-  return {{"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", domain}, {"range", range}}}};
+  return {
+      {"field", "scheme"}, {"type", "nominal"}, {"title", "scheme"}, {"scale", {{"domain", domain}, {"range", range}}}};
 }
 
 std::string chartFilesMarkdown(const Chart& c) {

@@ -11,9 +11,9 @@
 #include "report/charts.h"
 #include "report/report_howto.h"
 #include "report/report_page.h"
+#include "report/run_data.h"
 #include "report/scenario_summary.h"
 #include "report/scenario_table.h"
-#include "report/run_data.h"
 #include "results/write.h"
 
 namespace lb {
@@ -94,8 +94,7 @@ ReportOutput writeReport(const ReportOptions& options) {
 
   std::string runHref = runHrefFrom(out, options.runDir);
   std::vector<std::string> pageNotes = run.notes;
-  std::vector<Strip> strips =
-      imageStrips(run, options.frames, scenarioMetric(scenarioDescription(run)), pageNotes);
+  std::vector<Strip> strips = imageStrips(run, options.frames, scenarioMetric(scenarioDescription(run)), pageNotes);
   for (size_t i = run.notes.size(); i < pageNotes.size(); ++i) result.notes.push_back(pageNotes[i]);
   Page page = buildPage(run, charts, strips, runHref, pageNotes);
   writeFileAtomic((out / "report.md").string(), page.markdown);
@@ -104,8 +103,7 @@ ReportOutput writeReport(const ReportOptions& options) {
   // The metric notes link here: a copy of the definitions, so the link works wherever the folder goes.
   const fs::path doc = fs::path(LODBENCH_SOURCE_DIR) / "docs/results-format.md";
   std::error_code ec;
-  if (fs::is_regular_file(doc, ec))
-    fs::copy_file(doc, out / kFormatDocName, fs::copy_options::overwrite_existing, ec);
+  if (fs::is_regular_file(doc, ec)) fs::copy_file(doc, out / kFormatDocName, fs::copy_options::overwrite_existing, ec);
   if (ec || !fs::is_regular_file(out / kFormatDocName))
     result.notes.push_back(std::string(kFormatDocName) + " not copied from " + doc.string() +
                            (ec ? ": " + ec.message() : ": missing") + "; the metric notes' links will not resolve.");

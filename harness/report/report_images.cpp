@@ -1,4 +1,3 @@
-#include "render/image_io.h"
 #include "report/report_images.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "render/image_io.h"
 #include "report/report_tables.h"
 #include "report/scenario_table.h"
 #include "report/table.h"
@@ -58,7 +58,8 @@ std::string errorLegend() {
     int v = errorGrey(px[i]);
     g += (i ? "," : "") + hex(v, v, v) + " " + std::to_string(i * 25) + "%";
   }
-  return bar(g, {"0", "0.5", "2", "4.5", "≥ 8 px"}, "error (sqrt scale)") + swatch(skyHex(), "no terrain (sky)") + "</div>";
+  return bar(g, {"0", "0.5", "2", "4.5", "≥ 8 px"}, "error (sqrt scale)") + swatch(skyHex(), "no terrain (sky)") +
+         "</div>";
 }
 
 std::string crackLegend() {
@@ -149,7 +150,8 @@ std::pair<std::string, std::string> imageSection(const ReportRun& run, const std
       "image to enlarge it.";
   md += std::string(intro) +
         " Heat map and wireframe: tessellation level on a log2 scale, 1 blue, 8 green, 64 red. Error map: 0 px "
-        "black to 8 px and more white (sqrt scale), the sky colour where there is no terrain. Crack mask: red crack pixels "
+        "black to 8 px and more white (sqrt scale), the sky colour where there is no terrain. Crack mask: red crack "
+        "pixels "
         "over the dimmed frame.\n\n";
   std::set<std::string> modes;
   for (auto& s : strips)

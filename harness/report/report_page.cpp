@@ -25,7 +25,8 @@ const Section kChartSections[] = {
     {"speed", "Speed vs accuracy",
      "Cost against screen-space geometric error, one point per case. A scheme's Pareto front joins its settings "
      "that no other setting of the same scheme beats on both axes; the lower-left corner is better."},
-    {"scale", "Scale study", "GPU time and triangles as the grid, the resolution or a scheme's parameter grows, everything else held."},
+    {"scale", "Scale study",
+     "GPU time and triangles as the grid, the resolution or a scheme's parameter grows, everything else held."},
     {"histogram", "Triangle sizes",
      "How large the triangles are on screen. Bins are powers of two of the area in pixels; sub-pixel triangles "
      "waste rasterizer work, large ones lose detail."},
@@ -64,7 +65,8 @@ class Writer {
 };
 
 void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts) {
-  if (std::none_of(charts.begin(), charts.end(), [&](const Chart& c) { return c.section == s.id; })) return;  // scale: only when the run varies grid, resolution or a parameter
+  if (std::none_of(charts.begin(), charts.end(), [&](const Chart& c) { return c.section == s.id; }))
+    return;  // scale: only when the run varies grid, resolution or a parameter
   w.heading(2, s.title, s.id);
   w.para(s.intro);
   for (auto& c : charts) {
@@ -73,10 +75,11 @@ void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts)
       w.para(c.note, "note");
       continue;
     }
-    w.raw("![" + c.title + "](svg/" + c.id + ".svg)\n\n" + chartFilesMarkdown(c) + (c.caption.empty() ? "" : ". " + c.caption) + "\n\n",
+    w.raw("![" + c.title + "](svg/" + c.id + ".svg)\n\n" + chartFilesMarkdown(c) +
+              (c.caption.empty() ? "" : ". " + c.caption) + "\n\n",
           "<figure class=\"chart-box\"><div class=\"chart\" id=\"chart-" + c.id + "\" data-chart=\"" + c.id +
-              "\"></div>" + chartFilesHtml(c) + (c.caption.empty() ? "" : "<figcaption>" + htmlEscape(c.caption) + "</figcaption>") +
-              "</figure>\n");
+              "\"></div>" + chartFilesHtml(c) +
+              (c.caption.empty() ? "" : "<figcaption>" + htmlEscape(c.caption) + "</figcaption>") + "</figure>\n");
   }
 }
 
@@ -95,7 +98,8 @@ void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref
   w.para("Summary grid, " + metric + " by scenario and scheme. " + scenarioGridRule(metric));
   w.table(scenarioGrid(run, metric), "grid", true);
   for (const std::string& o : scenarioOutcomes(run, metric)) w.para("Observed, " + o);
-  w.para("One row per case: " + metric + " over its measured frames, the frame where it is worst, and that frame's "
+  w.para("One row per case: " + metric +
+         " over its measured frames, the frame where it is worst, and that frame's "
          "images.");
   w.table(scenarioTable(run, metric, runHref), "scenario", true);
 }
@@ -157,8 +161,9 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
     }
   }
   if (calibrated > 0)
-    w.para(flagged.empty() ? "Clock control: no case's calibration drifted by more than 2% over its timed frames."
-                           : "Clock control: calibration drifted by more than 2% over the timed frames of " + flagged + ".",
+    w.para(flagged.empty()
+               ? "Clock control: no case's calibration drifted by more than 2% over its timed frames."
+               : "Clock control: calibration drifted by more than 2% over the timed frames of " + flagged + ".",
            "note");
 
   w.heading(2, "Every case", "cases");

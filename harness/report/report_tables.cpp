@@ -37,7 +37,7 @@ constexpr Column kCaseColumns[] = {
     {"GPU ms frontend", "gpu_ms_frontend", "median", true},  // LOD decision + tessellator only
     {"CPU ms median", "cpu_ms", "median"},
     {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs recorded before timing modes lack it
-    {"calibration drift", "calibration", "drift", true},  // flagged when |drift| > 0.02
+    {"calibration drift", "calibration", "drift", true},   // flagged when |drift| > 0.02
     {"FPS median", "fps_median", ""},
     {"triangles median", "triangles", "median"},
     {"patches median", "patches", "median"},

@@ -60,9 +60,9 @@ std::string scenarioDescription(const ReportRun& run) {
 }
 
 std::string scenarioMetric(const std::string& description) {
-  static const char* const kMetrics[] = {"saturated_patches", "err_mean_px",  "err_p95_px",  "err_max_px",
-                                         "cracks_analytic",   "cracks_pixels", "pop_mean",    "pop_changed",
-                                         "img_frac_over",     "img_psnr_db",   "img_ssim",    "triangles"};
+  static const char* const kMetrics[] = {"saturated_patches", "err_mean_px",   "err_p95_px", "err_max_px",
+                                         "cracks_analytic",   "cracks_pixels", "pop_mean",   "pop_changed",
+                                         "img_frac_over",     "img_psnr_db",   "img_ssim",   "triangles"};
   const size_t from = description.find("Shows in");
   if (from == std::string::npos) return "";
   size_t best = std::string::npos;
@@ -88,7 +88,8 @@ std::string scenarioGridRule(const std::string& metric) {
          " over its measured frames. Colour, per scenario row: 0 (white) = the best case on that scenario (" +
          (higherIsBetter(metric) ? "highest" : "lowest") +
          "), 1 (dark red) = the worst, linear in between: (value - best) / (worst - best); the Markdown shows this "
-         "score in brackets. A row where every case is equal stays white. A cell links to the case's row in the scenario's table. Scenarios "
+         "score in brackets. A row where every case is equal stays white. A cell links to the case's row in the "
+         "scenario's table. Scenarios "
          "read as a difference from a control (e.g. far-origin against the terrain at the origin) show the signed "
          "difference from the control row's value for the same scheme and parameters, scored on its size.";
 }
@@ -113,7 +114,8 @@ std::string controlScenario(const ReportRun& run) {
   const std::string d = scenarioDescription(run);
   if (d.find("difference from the") == std::string::npos || run.scenarios.size() < 2) return "";
   for (const std::string& s : run.scenarios)
-    if (std::all_of(run.scenarios.begin(), run.scenarios.end(), [&](const std::string& o) { return o.rfind(s, 0) == 0; }))
+    if (std::all_of(run.scenarios.begin(), run.scenarios.end(),
+                    [&](const std::string& o) { return o.rfind(s, 0) == 0; }))
       return s;
   return "";
 }
@@ -168,7 +170,8 @@ std::vector<Cell> rowCells(const std::vector<const ReportCase*>& cases, const st
 }
 
 // The control row's mean of `metric` per scheme-and-parameters label ({} without a control row).
-std::map<std::string, double> controlMeans(const ReportRun& run, const std::string& controlRow, const std::string& metric) {
+std::map<std::string, double> controlMeans(const ReportRun& run, const std::string& controlRow,
+                                           const std::string& metric) {
   std::map<std::string, double> control;
   for (const ReportCase& c : run.cases)
     if (!controlRow.empty() && c.scenario == controlRow && c.status == "ok")
@@ -193,7 +196,9 @@ std::vector<std::pair<std::string, std::vector<Cell>>> gridRows(const ReportRun&
   std::vector<std::pair<std::string, std::vector<Cell>>> rows;
   for (const std::string& scenario : run.scenarios) {
     const bool isControl = !controlRow.empty() && scenario == controlRow;
-    rows.emplace_back(scenario + (isControl ? " (control)" : controlRow.empty() ? "" : " (difference)"),
+    rows.emplace_back(scenario + (isControl            ? " (control)"
+                                  : controlRow.empty() ? ""
+                                                       : " (difference)"),
                       rowCells(casesOf(scenario), columns, metric, mdPrefix, htmlPrefix,
                                controlRow.empty() ? nullptr : &control, isControl));
   }
@@ -268,9 +273,9 @@ Table scenarioTable(const ReportRun& run, const std::string& metric, const std::
         links.push_back(linkCell(mode, runHref + "/" + file, "#" + imageAnchor(c.id, m.worstFrame)));
     Cell images = links.empty() ? textCell("–") : joinCells(links, ", ", ", ");
     if (links.empty() && m.worstFrame >= 0) images = missingImageCell(c.id, m.worstFrame);
-    t.rows.push_back({schemeCell(run, c.scheme), textCell(c.paramsLabel), textCell(c.scenario), textCell(formatValue(m.mean)),
-                      textCell(formatValue(m.worst)), textCell(m.worstFrame >= 0 ? std::to_string(m.worstFrame) : "–"),
-                      images});
+    t.rows.push_back({schemeCell(run, c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
+                      textCell(formatValue(m.mean)), textCell(formatValue(m.worst)),
+                      textCell(m.worstFrame >= 0 ? std::to_string(m.worstFrame) : "–"), images});
     t.rowIds.push_back(scenarioRowId(c.id));
   }
   return t;

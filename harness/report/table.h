@@ -14,7 +14,7 @@ struct Cell {
 struct Table {
   std::vector<std::string> header;
   std::vector<std::vector<Cell>> rows;
-  std::vector<bool> numeric;  // right-aligned columns (optional, per header entry)
+  std::vector<bool> numeric;        // right-aligned columns (optional, per header entry)
   std::vector<std::string> rowIds;  // HTML id of each row (optional): link targets
 };
 

@@ -12,9 +12,9 @@
 #include <tuple>
 
 #include "error.h"
-#include "stats.h"
 #include "results/run_dir.h"
 #include "results/write.h"
+#include "stats.h"
 
 namespace lb {
 

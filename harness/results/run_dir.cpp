@@ -7,9 +7,9 @@
 #include <map>
 #include <sstream>
 
-#include "error.h"
 #include "config/case_identity.h"
 #include "config/config.h"
+#include "error.h"
 #include "results/write.h"
 
 namespace lb {
@@ -61,8 +61,7 @@ std::vector<CaseFile> readCaseFiles(const std::string& dir) {
       throw InputError(c.file + ": not a lodbench case file (no string \"case_id\")");
     if (!d.contains("frames") || !d["frames"].is_array())
       throw InputError(c.file + ": not a lodbench case file (no \"frames\" array)");
-    if (d.contains("status") && !d["status"].is_string())
-      throw InputError(c.file + ": field 'status' is not a string");
+    if (d.contains("status") && !d["status"].is_string()) throw InputError(c.file + ": field 'status' is not a string");
     auto [it, fresh] = seen.emplace(c.id(), c.file);
     if (!fresh) throw InputError(c.file + ": case_id '" + c.id() + "' also appears in " + it->second);
     out.push_back(std::move(c));
@@ -107,7 +106,8 @@ ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases) {
     }
     const Case& c = *it->second;
     if (cf.doc.value("status", "") != "ok") continue;  // failed or skipped: run again
-    std::string recorded = cf.doc.contains("digest") && cf.doc["digest"].is_string() ? cf.doc["digest"].get<std::string>() : "";
+    std::string recorded =
+        cf.doc.contains("digest") && cf.doc["digest"].is_string() ? cf.doc["digest"].get<std::string>() : "";
     if (recorded == c.digest) {
       plan.reuse.insert(c.id);
       continue;
@@ -131,9 +131,10 @@ ResumePlan checkResume(const std::string& dir, const json& previous, const json&
   const std::string runJson = dir + "/run.json";
   const json& ctx = previous["context"];
   if (!ctx.contains("config") || ctx["config"] != configRaw)
-    throw InputError(runJson + ": this run directory holds a different config ('" +
-                     (ctx.contains("config_file") && ctx["config_file"].is_string() ? ctx["config_file"].get<std::string>() : "?") +
-                     "'); choose another --out");
+    throw InputError(
+        runJson + ": this run directory holds a different config ('" +
+        (ctx.contains("config_file") && ctx["config_file"].is_string() ? ctx["config_file"].get<std::string>() : "?") +
+        "'); choose another --out");
   int oldIndex = 0, oldCount = 1;
   if (previous.contains("shard") && previous["shard"].is_object()) {
     oldIndex = previous["shard"].value("index", 0);

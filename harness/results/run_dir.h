@@ -4,11 +4,10 @@
 // policy: a file that is missing where it must exist, not JSON, or not a lodbench file is an
 // InputError naming it, never skipped. It also rebuilds the aggregates and decides what a resumed
 // run may keep (by the case digests, see case_identity.h).
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace lb {
 
@@ -37,9 +36,9 @@ void writeAggregates(const std::string& dir, const nlohmann::json& context);
 // What a resumed run keeps. A finished ("ok") case file is reused only when its recorded input
 // digest equals the case's digest now; failed and skipped cases run again.
 struct ResumePlan {
-  std::set<std::string> reuse;        // case ids kept as they are
-  std::vector<std::string> changed;   // "<id>: <what changed>" for ok cases whose inputs changed
-  std::vector<std::string> foreign;   // case files of cases this run does not have
+  std::set<std::string> reuse;       // case ids kept as they are
+  std::vector<std::string> changed;  // "<id>: <what changed>" for ok cases whose inputs changed
+  std::vector<std::string> foreign;  // case files of cases this run does not have
 };
 ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases);
 

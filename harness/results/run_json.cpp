@@ -10,8 +10,11 @@ json startedRunJson(const json& context, int shardIndex, int shardCount, const s
                     const json& previous) {
   json ids = json::array();
   for (auto& id : caseIds) ids.push_back(id);
-  json run = {{"schema_version", kSchemaVersion}, {"context", context}, {"start_time", context["time"]},
-              {"shard", {{"index", shardIndex}, {"count", shardCount}}}, {"case_ids", ids}};
+  json run = {{"schema_version", kSchemaVersion},
+              {"context", context},
+              {"start_time", context["time"]},
+              {"shard", {{"index", shardIndex}, {"count", shardCount}}},
+              {"case_ids", ids}};
   if (!previous.is_null()) {
     run["start_time"] = previous.value("start_time", context["time"].get<std::string>());
     run["resumed_at"] = previous.value("resumed_at", json::array());
@@ -31,8 +34,8 @@ void endRunJson(json& run, const RunEnd& end) {
 
 json mergedRunJson(const json& context, const std::vector<std::string>& inputs, bool forced,
                    const std::string& startTime) {
-  return {{"schema_version", kSchemaVersion}, {"context", context}, {"merged_from", inputs}, {"forced", forced},
-          {"start_time", startTime}, {"end_time", isoTimeUtc()}};
+  return {{"schema_version", kSchemaVersion}, {"context", context},      {"merged_from", inputs}, {"forced", forced},
+          {"start_time", startTime},          {"end_time", isoTimeUtc()}};
 }
 
 }  // namespace lb

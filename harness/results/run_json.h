@@ -2,10 +2,9 @@
 // run.json (docs/results-format.md): what a run is, written before its first case and again
 // when it ends; and the run.json of a merged run.
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace lb {
 
@@ -16,8 +15,8 @@ nlohmann::json startedRunJson(const nlohmann::json& context, int shardIndex, int
 
 // At the end: end time, what the work cost, whether a stop cut it short, and the totals.
 struct RunEnd {
-  nlohmann::json costs;           // per scheme, and "terrains"
-  double rayCastSPerImage = -1;   // < 0: no ray cast was made
+  nlohmann::json costs;          // per scheme, and "terrains"
+  double rayCastSPerImage = -1;  // < 0: no ray cast was made
   bool interrupted = false;
   int ok = 0, failed = 0, skipped = 0;
   size_t cases = 0;

@@ -3,19 +3,18 @@
 // (docs/results-format.md). What each command adds (report: labels and images; compare: pooled
 // timings of rounds) is a thin view on top, in report/run_data.h and compare/run_data.h. Files
 // are read through run_dir.h, so every reader has its error policy.
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace lb {
 
 struct CaseRecord {
   std::string id;
-  std::string file;  // cases/<id>.json it came from; "" when only summary.json names the case
+  std::string file;                          // cases/<id>.json it came from; "" when only summary.json names the case
   std::string status, reason, scheme, path;  // "" where the record has none
-  std::string terrain;  // the terrain's label
+  std::string terrain;                       // the terrain's label
   int width = 0, height = 0;
   int grid = 0;  // patches per side (case file "grid", else inputs.measurement.grid); 0 unknown
   nlohmann::json params = nlohmann::json::object();

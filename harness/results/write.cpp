@@ -4,17 +4,17 @@
 
 #include <array>
 #include <cmath>
-#include <map>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
-#include "stats.h"
+#include "config/config.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
-#include "config/config.h"
+#include "stats.h"
 #include "vk/context.h"
 
 namespace lb {
@@ -45,7 +45,8 @@ std::string gitCommit() {
   }
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   if (out.empty()) return "unknown";
-  std::string dirtyCmd = std::string("git -C '") + LODBENCH_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null";
+  std::string dirtyCmd =
+      std::string("git -C '") + LODBENCH_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null";
   if (FILE* p = popen(dirtyCmd.c_str(), "r")) {
     if (fgets(buf.data(), int(buf.size()), p)) out += "-dirty";
     pclose(p);
@@ -90,12 +91,14 @@ json runContext(const Context& ctx, const Config& config) {
 
 static json summaryOf(const std::vector<double>& v) {
   Summary s = summarize(v);
-  return {{"median", s.median}, {"p5", s.p5}, {"p95", s.p95}, {"p99", s.p99}, {"mean", s.mean},
-          {"min", s.min},       {"max", s.max}, {"stddev", s.stddev}};
+  return {{"median", s.median}, {"p5", s.p5},   {"p95", s.p95}, {"p99", s.p99},
+          {"mean", s.mean},     {"min", s.min}, {"max", s.max}, {"stddev", s.stddev}};
 }
 
 // JSON has no NaN: unavailable metrics are null.
-static json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+static json number(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
 
 json caseSummary(const CaseResult& r) {
   if (r.frames.empty()) return json::object();
@@ -250,12 +253,18 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"inputs", c.inputs},
           {"scheme", c.scheme},
           {"params", params},
-          {"terrain", {{"type", c.terrain.type}, {"label", c.terrainLabel}, {"file", c.terrain.file},
-                       {"size", c.terrain.size}, {"seed", c.terrain.seed},
-                       // gdal without a config extent: the one derived from the file, once read
-                       {"extent", c.terrain.extent > 0 ? json(c.terrain.extent)
-                                  : r.terrainSource.driver.empty() ? json(nullptr) : json(r.terrainSource.extent)},
-                       {"height_scale", c.terrain.heightScale}, {"source", sourceJson(c, r.terrainSource)}}},
+          {"terrain",
+           {{"type", c.terrain.type},
+            {"label", c.terrainLabel},
+            {"file", c.terrain.file},
+            {"size", c.terrain.size},
+            {"seed", c.terrain.seed},
+            // gdal without a config extent: the one derived from the file, once read
+            {"extent", c.terrain.extent > 0             ? json(c.terrain.extent)
+                       : r.terrainSource.driver.empty() ? json(nullptr)
+                                                        : json(r.terrainSource.extent)},
+            {"height_scale", c.terrain.heightScale},
+            {"source", sourceJson(c, r.terrainSource)}}},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
           {"grid", c.grid},
@@ -270,8 +279,9 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"frames", frames}};
 }
 
-static const char* const kTimingColumns[] = {"frame", "gpu_ms", "cpu_ms", "patches", "tes_invocations",
-                                             "clip_invocations", "clip_primitives", "fragment_invocations"};
+static const char* const kTimingColumns[] = {
+    "frame",           "gpu_ms",           "cpu_ms",          "patches",
+    "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"};
 
 std::string framesCsvHeader() {
   std::string h = "case_id";

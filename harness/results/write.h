@@ -2,13 +2,12 @@
 // Result files (docs/design.md, Output): run.json, cases/<id>.json, frames.csv, summary.json.
 // Every write is atomic (temp file + rename), so a killed run leaves no corrupt file.
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "render/renderer.h"
 #include "metrics/frame_metrics.h"
+#include "render/renderer.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -26,11 +25,11 @@ struct CaseResult {
   std::vector<FrameMetrics> metrics;  // measurement frames (images dropped after use)
   double targetAreaPx = 0;            // the scheme's target triangle area, 0 = none
   nlohmann::json matched;             // matched-comparison search result (null when off)
-  std::vector<std::string> images;  // relative to the run dir
+  std::vector<std::string> images;    // relative to the run dir
   double seconds = 0;
   // Timing modes other than shaded: mode -> frames in the order of `frames`.
   std::map<std::string, std::vector<FrameResult>> modeFrames;
-  nlohmann::json calibration;  // clock-control calibration (null when off)
+  nlohmann::json calibration;   // clock-control calibration (null when off)
   TerrainSource terrainSource;  // what the case's terrain was read from (driver "": generated or never read)
 };
 

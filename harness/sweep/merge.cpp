@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "error.h"
@@ -24,7 +23,8 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
   for (size_t i = 1; i < runs.size() && !force; ++i) {
     const json& c = runs[i]["context"];
     if (c["config"] != first["config"])
-      throw InputError("merge: " + inputs[i] + " ran a different config than " + inputs[0] + " (use --force to merge anyway)");
+      throw InputError("merge: " + inputs[i] + " ran a different config than " + inputs[0] +
+                       " (use --force to merge anyway)");
     for (const char* k : {"device", "driver", "driver_version"})
       if (c[k] != first[k])
         throw InputError(std::string("merge: ") + inputs[i] + " ran on " + k + " '" + c[k].dump() + "', " + inputs[0] +
@@ -49,7 +49,8 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
     }
     if (fs::exists(d + "/images"))
       for (auto& e : fs::directory_iterator(d + "/images"))
-        fs::copy_file(e.path(), fs::path(outDir) / "images" / e.path().filename(), fs::copy_options::overwrite_existing);
+        fs::copy_file(e.path(), fs::path(outDir) / "images" / e.path().filename(),
+                      fs::copy_options::overwrite_existing);
   }
   json run = mergedRunJson(first, inputs, force, runs[0].value("start_time", ""));
   writeFileAtomic(outDir + "/run.json", run.dump(2));

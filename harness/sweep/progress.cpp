@@ -14,7 +14,7 @@ namespace lb {
 
 std::vector<CaseWork> plannedWork(const Config& config, const std::vector<Case>& cases) {
   std::map<std::string, int> framesOf;  // per path file
-  std::set<std::string> truthMade;        // terrain, path and resolution whose truth an earlier case makes
+  std::set<std::string> truthMade;      // terrain, path and resolution whose truth an earlier case makes
   const bool truth = config.measure.on("image") || config.measure.on("cracks");
   int modes = 1;  // shaded, plus one replay per other timing mode (replay/timing_passes.h)
   for (const std::string& m : config.timing.modes) modes += m != "shaded";
@@ -67,8 +67,12 @@ void EtaEstimator::addTiming(const std::string& scheme, int frames, double secon
 void EtaEstimator::addMeasured(const std::string& scheme, int frames, double seconds) {
   add(measured_, scheme, frames, seconds);
 }
-void EtaEstimator::addOverhead(const std::string& scheme, double seconds) { add(overhead_, scheme, 1, seconds); }
-void EtaEstimator::addTruth(int rayCasts, double seconds) { add(truth_, "", rayCasts, seconds); }
+void EtaEstimator::addOverhead(const std::string& scheme, double seconds) {
+  add(overhead_, scheme, 1, seconds);
+}
+void EtaEstimator::addTruth(int rayCasts, double seconds) {
+  add(truth_, "", rayCasts, seconds);
+}
 
 double EtaEstimator::remaining(const std::vector<CaseWork>& work, bool& complete) const {
   complete = true;
@@ -173,7 +177,8 @@ void SweepProgress::frame(int done, int total) {
   left += eta_.remaining({rest}, caseComplete) + leftAfterCurrent(restComplete);
   bool measurementUnknown = eta_.measuredCost("") < 0;
   std::fprintf(stderr, "%s    %s %d/%d  %s elapsed, %s%s", tty ? "\r" : "",
-               phase_ == Phase::Measure ? "measured frame" : "frame", done, total, formatDuration(since(start_)).c_str(),
+               phase_ == Phase::Measure ? "measured frame" : "frame", done, total,
+               formatDuration(since(start_)).c_str(),
                leftText(left, caseComplete && restComplete, measurementUnknown).c_str(), tty ? "   " : "\n");
   std::fflush(stderr);
 }

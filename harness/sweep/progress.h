@@ -78,9 +78,9 @@ class SweepProgress : public CaseProgress {
   };
   SweepProgress(bool enabled, std::vector<CaseWork> cases, std::function<Truth()> truth = {});
   void startCase(size_t index, const std::string& id);
-  void phase(Phase p) override;  // the case enters phase p; the time of the previous phase is recorded
+  void phase(Phase p) override;              // the case enters phase p; the time of the previous phase is recorded
   void frame(int done, int total) override;  // progress within the current phase (timing or measurement)
-  void endCase(bool ok);            // records the overhead (only of a case that finished)
+  void endCase(bool ok);                     // records the overhead (only of a case that finished)
   const EtaEstimator& estimator() const { return eta_; }
 
  private:
@@ -95,7 +95,7 @@ class SweepProgress : public CaseProgress {
   double timedSeconds_ = 0;  // timing, measurement and ray-cast seconds of the current case
   std::function<Truth()> truth_;
   Truth truthAtPhase_;
-  int phaseDone_ = 0;        // frames done in the current phase
+  int phaseDone_ = 0;  // frames done in the current phase
 };
 
 }  // namespace lb

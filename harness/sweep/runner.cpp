@@ -3,8 +3,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -52,8 +52,7 @@ void parseShard(const std::string& text, int& index, int& count) {
   } catch (const std::exception&) {
     throw InputError("--shard '" + text + "': expected i/n, e.g. 0/4");
   }
-  if (count < 1 || index < 0 || index >= count)
-    throw InputError("--shard '" + text + "': need 0 <= i < n");
+  if (count < 1 || index < 0 || index >= count) throw InputError("--shard '" + text + "': need 0 <= i < n");
 }
 
 // Temp files of an interrupted writer are never valid results.
@@ -137,8 +136,9 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
-        std::fprintf(stderr, "\r    ok: %zu frames, GPU median %.3f ms, %.0f triangles median, %.1fs\n", r.frames.size(),
-                     sum["gpu_ms"]["median"].get<double>(), sum["triangles"]["median"].get<double>(), r.seconds);
+        std::fprintf(stderr, "\r    ok: %zu frames, GPU median %.3f ms, %.0f triangles median, %.1fs\n",
+                     r.frames.size(), sum["gpu_ms"]["median"].get<double>(), sum["triangles"]["median"].get<double>(),
+                     r.seconds);
       else
         std::fprintf(stderr, "\r    %s: %s\n", r.status.c_str(), r.reason.c_str());
     }
@@ -154,7 +154,8 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     EtaEstimator::Own o = progress.estimator().own(c.scheme);
     auto val = [](double v) { return v >= 0 ? json(v) : json(nullptr); };
     if (o.timing >= 0)
-      end.costs[c.scheme] = {{"timing_s_per_frame", val(o.timing)}, {"measured_s_per_frame", val(o.measured)},
+      end.costs[c.scheme] = {{"timing_s_per_frame", val(o.timing)},
+                             {"measured_s_per_frame", val(o.measured)},
                              {"case_overhead_s", val(o.overhead)}};
   }
   end.costs["terrains"] = stageCostsJson();  // no scheme is named "terrains"

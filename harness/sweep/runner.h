@@ -10,11 +10,11 @@
 namespace lb {
 
 struct RunOptions {
-  std::string outDir;      // run directory; "" = results/<name>/<utc-time>
-  bool progress = true;    // progress line on stderr
+  std::string outDir;    // run directory; "" = results/<name>/<utc-time>
+  bool progress = true;  // progress line on stderr
   bool validation = false;
   int shardIndex = 0, shardCount = 1;  // run cases whose index % shardCount == shardIndex
-  bool rerunChanged = false;  // resume: rerun finished cases whose inputs changed (else refuse)
+  bool rerunChanged = false;           // resume: rerun finished cases whose inputs changed (else refuse)
 };
 
 struct RunTotals {

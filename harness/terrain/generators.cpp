@@ -1,9 +1,10 @@
 #include "terrain/generators.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
 #include <vector>
 
 #include "error.h"

@@ -31,7 +31,9 @@ float Heightfield::at(int x, int z) const {
 namespace {
 
 // GLSL's definition of mix(); exact at a = 0 and a = 1, which keeps sample() == at() on grid points.
-inline float mixf(float x, float y, float a) { return x * (1.0f - a) + y * a; }
+inline float mixf(float x, float y, float a) {
+  return x * (1.0f - a) + y * a;
+}
 
 // clamp to [0,1] that maps NaN to 0 instead of passing it on to a float->int conversion.
 inline float saturate(float v) {
@@ -75,8 +77,8 @@ namespace {
 
 constexpr int kMinSize = 2;
 constexpr int kMaxSize = 16385;
-constexpr int kOctaves = 8;      // the default ("detail": "fixed"): the finest cell is 1/192 of the extent
-constexpr int kMaxOctaves = 16;  // "detail": "resolution" at the largest size needs 13
+constexpr int kOctaves = 8;             // the default ("detail": "fixed"): the finest cell is 1/192 of the extent
+constexpr int kMaxOctaves = 16;         // "detail": "resolution" at the largest size needs 13
 constexpr int kRidgedOctaves = 5;       // octaves 1..5; octave 0 is uplift, the rest fBm detail
 constexpr float kBaseFrequency = 1.5f;  // noise cells across the whole terrain at octave 0
 constexpr float kRidgeOffset = 1.0f;    // Musgrave's offset: 1 puts the crest at noise == 0
@@ -116,7 +118,9 @@ inline float gradDot(uint32_t hash, float dx, float dz) {
   return g[0] * dx + g[1] * dz;
 }
 
-inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+inline float fade(float t) {
+  return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
 
 // Perlin-style gradient noise, roughly in [-1, 1], zero on lattice points.
 float gradientNoise(float x, float z, uint32_t seed) {
@@ -218,10 +222,13 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
   const float scale = span > 0.0f ? spec.heightScale / span : 0.0f;
   const float lo = hf.minHeight;
   // Clamp because (max - min) * (heightScale / span) can round a hair above heightScale.
-  parallelRows(spec.size, [&](int z0, int z1) {
-    for (size_t i = size_t(z0) * size_t(spec.size); i < size_t(z1) * size_t(spec.size); ++i)
-      hf.h[i] = std::min((hf.h[i] - lo) * scale, spec.heightScale);
-  }, 256);
+  parallelRows(
+      spec.size,
+      [&](int z0, int z1) {
+        for (size_t i = size_t(z0) * size_t(spec.size); i < size_t(z1) * size_t(spec.size); ++i)
+          hf.h[i] = std::min((hf.h[i] - lo) * scale, spec.heightScale);
+      },
+      256);
   hf.updateRange();
   return hf;
 }

@@ -28,8 +28,8 @@ struct TerrainSource {
 };
 
 struct Heightfield {
-  int width = 0;   // samples along x
-  int height = 0;  // samples along z
+  int width = 0;           // samples along x
+  int height = 0;          // samples along z
   float extent = 1000.0f;  // world size covered along x and z (corner samples sit on the border)
   std::vector<float> h;    // world-space heights (heightScale applied), row-major, row = z
   float minHeight = 0.0f;
@@ -40,7 +40,7 @@ struct Heightfield {
   double originX = 0.0, originZ = 0.0;
   TerrainSource source;
 
-  float at(int x, int z) const;            // clamped to the border
+  float at(int x, int z) const;  // clamped to the border
   // Bilinear height at world (x, z). Must match shaders/common.glsl terrainHeight() exactly:
   // texel coords t = (p / extent) * (size - 1), clamped, lerp of the 4 neighbours.
   float sample(float worldX, float worldZ) const;
@@ -49,13 +49,13 @@ struct Heightfield {
 
 // Where a heightfield comes from. Mirrors the "terrain" object of a config file.
 struct TerrainSpec {
-  std::string type = "procedural";  // procedural | hgt | png16 | r16 | r32f | gdal | spikes | cliff | flat | voids
-  std::string file;                 // for file types (resolved path)
-  int size = 1024;                  // procedural: samples per side
-  uint32_t seed = 1;                // procedural
-  int rawWidth = 0, rawHeight = 0;  // r16 / r32f: dimensions (required)
-  float extent = 1000.0f;           // world units covered along x and z; gdal: 0 = from the file's georeferencing
-  float heightScale = 120.0f;       // procedural: peak height; files: multiplier on stored values
+  std::string type = "procedural";      // procedural | hgt | png16 | r16 | r32f | gdal | spikes | cliff | flat | voids
+  std::string file;                     // for file types (resolved path)
+  int size = 1024;                      // procedural: samples per side
+  uint32_t seed = 1;                    // procedural
+  int rawWidth = 0, rawHeight = 0;      // r16 / r32f: dimensions (required)
+  float extent = 1000.0f;               // world units covered along x and z; gdal: 0 = from the file's georeferencing
+  float heightScale = 120.0f;           // procedural: peak height; files: multiplier on stored values
   double originX = 0.0, originZ = 0.0;  // world position of the terrain's (0, 0) corner (Heightfield::originX)
   // procedural "detail": "resolution": fBm octaves continue down to 2 sample spacings, so more
   // samples carry more relief; false ("fixed", the default) keeps the 8 octaves of every earlier run.

@@ -17,17 +17,16 @@
 //  - 4 bytes per texel, as RGBA8; linear filtering of R16G16_SFLOAT is mandatory in Vulkan.
 // Slopes beyond the float16 range (|g| > 65504) are clamped: their normal is horizontal to 2e-5.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace lb {
 
 struct Heightfield;
 
 struct NormalMap {
-  int width = 0, height = 0;    // the heightfield's sample counts
-  std::vector<uint16_t> texels; // RG16F bit patterns (gx, gz), row-major, row = z
+  int width = 0, height = 0;     // the heightfield's sample counts
+  std::vector<uint16_t> texels;  // RG16F bit patterns (gx, gz), row-major, row = z
 };
 
 NormalMap computeNormalMap(const Heightfield& hf);

@@ -12,9 +12,10 @@ namespace {
 std::string keyOf(const TerrainSpec& s) {
   std::ostringstream k;
   k.precision(17);
-  k << s.type << '\n' << s.file << '\n' << s.size << ' ' << s.seed << ' ' << s.rawWidth << ' ' << s.rawHeight << ' '
-    << s.extent << ' ' << s.heightScale << ' ' << s.originX << ' ' << s.originZ << ' ' << s.detailToSpacing << ' '
-    << s.band << ' ' << s.overview;
+  k << s.type << '\n'
+    << s.file << '\n'
+    << s.size << ' ' << s.seed << ' ' << s.rawWidth << ' ' << s.rawHeight << ' ' << s.extent << ' ' << s.heightScale
+    << ' ' << s.originX << ' ' << s.originZ << ' ' << s.detailToSpacing << ' ' << s.band << ' ' << s.overview;
   for (int v : s.window) k << ' ' << v;
   if (!s.file.empty()) {
     std::error_code ec;

@@ -1,10 +1,10 @@
 #include "terrain/terrain_shape.h"
 
+#include <stb/stb_image.h>  // declarations only; terrain_loader.cpp holds the implementation
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-
-#include <stb/stb_image.h>  // declarations only; terrain_loader.cpp holds the implementation
 
 #include "error.h"
 #include "terrain/gdal_loader.h"

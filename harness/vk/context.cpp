@@ -13,21 +13,32 @@ namespace lb {
 std::atomic<int> vkFailCountdown{0};
 
 const char* vkResultName(VkResult r) {
-  switch (r) {
-#define LB_CASE(x) \
-  case x:          \
-    return #x;
-    LB_CASE(VK_SUCCESS) LB_CASE(VK_NOT_READY) LB_CASE(VK_TIMEOUT) LB_CASE(VK_INCOMPLETE)
-    LB_CASE(VK_ERROR_OUT_OF_HOST_MEMORY) LB_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
-    LB_CASE(VK_ERROR_INITIALIZATION_FAILED) LB_CASE(VK_ERROR_DEVICE_LOST)
-    LB_CASE(VK_ERROR_MEMORY_MAP_FAILED) LB_CASE(VK_ERROR_LAYER_NOT_PRESENT)
-    LB_CASE(VK_ERROR_EXTENSION_NOT_PRESENT) LB_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
-    LB_CASE(VK_ERROR_INCOMPATIBLE_DRIVER) LB_CASE(VK_ERROR_TOO_MANY_OBJECTS)
-    LB_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED) LB_CASE(VK_ERROR_UNKNOWN)
-#undef LB_CASE
-    default:
-      return "VK_ERROR_(unnamed)";
-  }
+  // A table rather than a switch of macro cases: clang-format keeps it readable.
+#define LB_NAME(x) \
+  { x, #x }
+  static const struct {
+    VkResult result;
+    const char* name;
+  } kNames[] = {LB_NAME(VK_SUCCESS),
+                LB_NAME(VK_NOT_READY),
+                LB_NAME(VK_TIMEOUT),
+                LB_NAME(VK_INCOMPLETE),
+                LB_NAME(VK_ERROR_OUT_OF_HOST_MEMORY),
+                LB_NAME(VK_ERROR_OUT_OF_DEVICE_MEMORY),
+                LB_NAME(VK_ERROR_INITIALIZATION_FAILED),
+                LB_NAME(VK_ERROR_DEVICE_LOST),
+                LB_NAME(VK_ERROR_MEMORY_MAP_FAILED),
+                LB_NAME(VK_ERROR_LAYER_NOT_PRESENT),
+                LB_NAME(VK_ERROR_EXTENSION_NOT_PRESENT),
+                LB_NAME(VK_ERROR_FEATURE_NOT_PRESENT),
+                LB_NAME(VK_ERROR_INCOMPATIBLE_DRIVER),
+                LB_NAME(VK_ERROR_TOO_MANY_OBJECTS),
+                LB_NAME(VK_ERROR_FORMAT_NOT_SUPPORTED),
+                LB_NAME(VK_ERROR_UNKNOWN)};
+#undef LB_NAME
+  for (const auto& n : kNames)
+    if (n.result == r) return n.name;
+  return "VK_ERROR_(unnamed)";
 }
 
 void vkFail(VkResult r, const char* call, const char* file, int line) {
@@ -136,7 +147,8 @@ static std::vector<DeviceCandidate> examine(VkInstance instance, std::vector<VkP
     else if (graphicsQueueFamily(out[i]) < 0)
       c.rejectReason = "no graphics+compute queue with timestamps";
     else if (p.limits.maxTessellationGenerationLevel < 64)
-      c.rejectReason = "maxTessellationGenerationLevel " + std::to_string(p.limits.maxTessellationGenerationLevel) + " < 64";
+      c.rejectReason =
+          "maxTessellationGenerationLevel " + std::to_string(p.limits.maxTessellationGenerationLevel) + " < 64";
     c.suitable = c.rejectReason.empty();
     result.push_back(c);
   }
@@ -208,7 +220,8 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.validationEnabled = validation;
   if (debugUtils) {
     VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mi.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
     mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
     mi.pfnUserCallback = debugCallback;
     mi.pUserData = &ctx;
@@ -239,9 +252,9 @@ void createContext(Context& ctx, const ContextOptions& options) {
   vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &have);
   ctx.enabledFeatures.tessellationShader = VK_TRUE;
   ctx.enabledFeatures.pipelineStatisticsQuery = VK_TRUE;
-  ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;  // wireframe images only
+  ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;                              // wireframe images only
   ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
-  ctx.enabledFeatures.geometryShader = have.geometryShader;  // measurement passes only
+  ctx.enabledFeatures.geometryShader = have.geometryShader;                                  // measurement passes only
   // Tests simulate a device without optional features (LODBENCH_TEST_DISABLE=geometryShader,...).
   if (const char* off = std::getenv("LODBENCH_TEST_DISABLE")) {
     std::string list = off;

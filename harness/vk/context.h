@@ -3,11 +3,11 @@
 // index, one graphics+compute queue. No surface, no swapchain. The instance and device are the
 // roots, created and destroyed here; every object made from the device is owned by a vk::Unique
 // (vk/unique.h), which its owner must release before destroyContext.
+#include <vulkan/vulkan.h>
+
 #include <atomic>
 #include <string>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "vk/device_limits.h"
 

@@ -9,7 +9,9 @@ namespace {
 constexpr uint64_t kImageBytesPerSample = 4;  // heights R32F; the normal map's R16G16F is as large
 constexpr uint64_t kResidentBytesPerSample = 2 * kImageBytesPerSample;
 
-std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
+std::string mib(uint64_t bytes) {
+  return std::to_string((bytes + (1u << 19)) >> 20) + " MiB";
+}
 
 // The bytes a terrain of `samples` needs on each heap at its peak (the second upload, when both
 // images and one staging buffer exist).
@@ -59,8 +61,8 @@ std::string terrainLimitProblem(const DeviceLimits& d, int width, int height) {
            " bytes a sample: heights, normal map" + (d.sharedHeap ? ", staging" : "") + "; plus " +
            mib(kDeviceReserveBytes) + " for render targets and buffers)";
   if (!d.sharedHeap && samples * kImageBytesPerSample > d.stagingHeapBytes)
-    return size + " need a " + mib(samples * kImageBytesPerSample) + " staging buffer, more than " + d.name +
-           "'s " + mib(d.stagingHeapBytes) + " host-visible heap";
+    return size + " need a " + mib(samples * kImageBytesPerSample) + " staging buffer, more than " + d.name + "'s " +
+           mib(d.stagingHeapBytes) + " host-visible heap";
   return "";
 }
 

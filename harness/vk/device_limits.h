@@ -5,10 +5,10 @@
 // sample. So a terrain needs both sides <= maxImageDimension2D, each image <= the largest single
 // allocation, and the bytes above on the heaps they come from (one heap on lavapipe and other
 // unified-memory devices: 12 bytes a sample there).
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <string>
-
-#include <vulkan/vulkan.h>
 
 namespace lb {
 

@@ -29,9 +29,10 @@ Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, b
   vkGetBufferMemoryRequirements(ctx.device, buffer, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
-  ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits,
-                                      hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                                  : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  ai.memoryTypeIndex =
+      findMemoryType(ctx, req.memoryTypeBits,
+                     hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                 : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkDeviceMemory memory;
   VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
   b.memory = vk::Unique(ctx.device, memory);
@@ -146,7 +147,8 @@ Bindings createBindings(Context& ctx, const std::vector<DescriptorBinding>& bind
   std::vector<VkDescriptorPoolSize> sizes;
   for (const DescriptorBinding& d : bindings) {
     b.push_back({d.binding, d.type, 1, d.stages, nullptr});
-    auto same = std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& s) { return s.type == d.type; });
+    auto same =
+        std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& s) { return s.type == d.type; });
     if (same == sizes.end())
       sizes.push_back({d.type, 1});
     else

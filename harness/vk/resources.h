@@ -1,11 +1,11 @@
 #pragma once
 // Buffers and images as owners of their Vulkan objects (vk/unique.h): move-only, released when
 // they go out of scope or are assigned {}.
+#include <vulkan/vulkan.h>
+
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "vk/unique.h"
 

@@ -9,9 +9,9 @@
 //   VkSampler raw;
 //   VK_CHECK(vkCreateSampler(device, &info, nullptr, &raw));
 //   sampler_ = vk::Unique(device, raw);
-#include <utility>
-
 #include <vulkan/vulkan.h>
+
+#include <utility>
 
 namespace lb::vk {
 

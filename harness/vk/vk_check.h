@@ -1,8 +1,8 @@
 #pragma once
 // VK_CHECK stays on in every build type: a benchmark that silently ignores a failed call lies.
-#include <atomic>
-
 #include <vulkan/vulkan.h>
+
+#include <atomic>
 
 namespace lb {
 const char* vkResultName(VkResult r);
@@ -13,16 +13,20 @@ const char* vkResultName(VkResult r);
 // creation and check that nothing is left behind. 0 turns it off. Off, a checked call costs one
 // relaxed load of this counter.
 extern std::atomic<int> vkFailCountdown;
-inline void failNthVkCheck(int n) { vkFailCountdown.store(n); }
+inline void failNthVkCheck(int n) {
+  vkFailCountdown.store(n);
+}
 // Checks still to go before the planted failure; 0 once it has fired (or when none is planted).
-inline int vkChecksBeforeFailure() { return vkFailCountdown.load(); }
+inline int vkChecksBeforeFailure() {
+  return vkFailCountdown.load();
+}
 inline bool vkInjectedFailure() {
   return vkFailCountdown.load(std::memory_order_relaxed) > 0 && vkFailCountdown.fetch_sub(1) == 1;
 }
 }  // namespace lb
 
-#define VK_CHECK(call)                                                                           \
-  do {                                                                                           \
-    VkResult vkCheckResult_ = lb::vkInjectedFailure() ? VK_ERROR_OUT_OF_DEVICE_MEMORY : (call);  \
-    if (vkCheckResult_ != VK_SUCCESS) lb::vkFail(vkCheckResult_, #call, __FILE__, __LINE__);     \
+#define VK_CHECK(call)                                                                          \
+  do {                                                                                          \
+    VkResult vkCheckResult_ = lb::vkInjectedFailure() ? VK_ERROR_OUT_OF_DEVICE_MEMORY : (call); \
+    if (vkCheckResult_ != VK_SUCCESS) lb::vkFail(vkCheckResult_, #call, __FILE__, __LINE__);    \
   } while (0)

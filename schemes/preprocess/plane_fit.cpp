@@ -94,10 +94,14 @@ PlaneFitResult fitPlanes(const Heightfield& hf, PlaneFit fit) {
   r.height = planeFitBlockCount(hf.height);
   r.blocks.resize(size_t(r.width) * size_t(r.height));
   // Blocks are independent: bands of block rows on every hardware thread give the same result.
-  parallelRows(r.height, [&](int bz0, int bz1) {
-    for (int bz = bz0; bz < bz1; ++bz)
-      for (int bx = 0; bx < r.width; ++bx) r.blocks[size_t(bz) * size_t(r.width) + size_t(bx)] = fitBlock(hf, bx, bz, fit);
-  }, 4);
+  parallelRows(
+      r.height,
+      [&](int bz0, int bz1) {
+        for (int bz = bz0; bz < bz1; ++bz)
+          for (int bx = 0; bx < r.width; ++bx)
+            r.blocks[size_t(bz) * size_t(r.width) + size_t(bx)] = fitBlock(hf, bx, bz, fit);
+      },
+      4);
   return r;
 }
 

@@ -60,7 +60,9 @@ inline Cell cellAt(const Heightfield& hf, dvec2 p) {
   return c;
 }
 
-double heightAt(const Heightfield& hf, dvec2 p) { return cellAt(hf, p).at(p); }
+double heightAt(const Heightfield& hf, dvec2 p) {
+  return cellAt(hf, p).at(p);
+}
 
 // Parameters t in (0, 1) where segment coordinate a -> b crosses the integer grid lines, in
 // increasing t: (g - a) / (b - a) for the integers g strictly between a and b. The quotient is
@@ -161,7 +163,8 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
   double gz = ((hc - ha) * e1.x - (hb - ha) * e2.x) / det;
   // Samples inside, row by row (cost follows the triangle's area, not its bounding box).
   dvec2 v[3] = {a, b, c};
-  double zlo = std::max(0.0, std::min({a.y, b.y, c.y})), zhi = std::min(double(hf.height - 1), std::max({a.y, b.y, c.y}));
+  double zlo = std::max(0.0, std::min({a.y, b.y, c.y})),
+         zhi = std::min(double(hf.height - 1), std::max({a.y, b.y, c.y}));
   for (int z = ceilToInt(zlo), zEnd = floorToInt(zhi); z <= zEnd; ++z) {
     double xlo = INFINITY, xhi = -INFINITY;
     for (int e = 0; e < 3; ++e) {
@@ -204,7 +207,8 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
 
 double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c) {
   double ha = heightAt(hf, a), hb = heightAt(hf, b), hc = heightAt(hf, c);
-  double worst = std::max({edgeDeviation(hf, a, b, ha, hb), edgeDeviation(hf, b, c, hb, hc), edgeDeviation(hf, c, a, hc, ha)});
+  double worst =
+      std::max({edgeDeviation(hf, a, b, ha, hb), edgeDeviation(hf, b, c, hb, hc), edgeDeviation(hf, c, a, hc, ha)});
   return std::max(worst, interiorDeviation(hf, a, b, c, ha, hb, hc));
 }
 
@@ -212,8 +216,8 @@ namespace {
 
 // D3D11 reference tessellator: the order in which points split a half edge (ruler function),
 // which drives the stitching of a transition strip between two rows of different density.
-constexpr int kRulerOrder[33] = {0,  32, 16, 8,  17, 4,  18, 9,  19, 2,  20, 10, 21, 5,  22, 11, 23,
-                                 1,  24, 12, 25, 6,  26, 13, 27, 3,  28, 14, 29, 7,  30, 15, 31};
+constexpr int kRulerOrder[33] = {0, 32, 16, 8,  17, 4,  18, 9,  19, 2,  20, 10, 21, 5,  22, 11, 23,
+                                 1, 24, 12, 25, 6,  26, 13, 27, 3,  28, 14, 29, 7,  30, 15, 31};
 
 // Triangles of the outermost ring along one edge, in strip coordinates (s along the edge, t
 // inward), for inner level L >= 2 and edge level E (powers of two): outer row s = j / E at t = 0,
@@ -224,8 +228,14 @@ void stripTriangles(int L, int E, std::vector<dvec2>& out) {
   auto o = [&](int j) { return dvec2(double(j) / E, 0.0); };
   auto in = [&](int i) { return dvec2(double(i + 1) / L, 1.0 / L); };
   int inHalf = L / 2, outHalf = E / 2, oi = 0, ii = 0;
-  auto advOut = [&] { out.insert(out.end(), {o(oi), o(oi + 1), in(ii)}); ++oi; };
-  auto advIn = [&] { out.insert(out.end(), {in(ii), o(oi), in(ii + 1)}); ++ii; };
+  auto advOut = [&] {
+    out.insert(out.end(), {o(oi), o(oi + 1), in(ii)});
+    ++oi;
+  };
+  auto advIn = [&] {
+    out.insert(out.end(), {in(ii), o(oi), in(ii + 1)});
+    ++ii;
+  };
   if (kRulerOrder[0] < outHalf) advOut();
   for (int i = 1; i <= 32; ++i) {
     if (kRulerOrder[i] < inHalf) advIn();
@@ -240,23 +250,30 @@ void stripTriangles(int L, int E, std::vector<dvec2>& out) {
 
 // Level 1 with a finer edge: the inner "ring" is the centre point and the edge fans to it.
 void fanTriangles(int E, std::vector<dvec2>& out) {
-  for (int j = 0; j < E; ++j) out.insert(out.end(), {dvec2(double(j) / E, 0), dvec2(double(j + 1) / E, 0), dvec2(0.5, 0.5)});
+  for (int j = 0; j < E; ++j)
+    out.insert(out.end(), {dvec2(double(j) / E, 0), dvec2(double(j + 1) / E, 0), dvec2(0.5, 0.5)});
 }
 
 // Strip (s, t) -> patch (u, v) for edge u=0, v=0, u=1, v=1.
 dvec2 toPatch(int edge, dvec2 st) {
   switch (edge) {
-    case 0: return {st.y, st.x};
-    case 1: return {st.x, st.y};
-    case 2: return {1.0 - st.y, st.x};
-    default: return {st.x, 1.0 - st.y};
+    case 0:
+      return {st.y, st.x};
+    case 1:
+      return {st.x, st.y};
+    case 2:
+      return {1.0 - st.y, st.x};
+    default:
+      return {st.x, 1.0 - st.y};
   }
 }
 
 void edgeTriangles(int L, int E, int edge, std::vector<dvec2>& out) {
   std::vector<dvec2> st;
-  if (L == 1) fanTriangles(E, st);
-  else stripTriangles(L, E, st);
+  if (L == 1)
+    fanTriangles(E, st);
+  else
+    stripTriangles(L, E, st);
   for (dvec2 p : st) out.push_back(toPatch(edge, p));
 }
 
@@ -266,8 +283,8 @@ void interiorTriangles(int L, std::vector<dvec2>& out) {
   int lo = L == 1 ? 0 : 1, hi = L == 1 ? 1 : L - 1;
   for (int b = lo; b < hi; ++b)
     for (int a = lo; a < hi; ++a) {
-      dvec2 c00(double(a) / L, double(b) / L), c10(double(a + 1) / L, double(b) / L), c01(double(a) / L, double(b + 1) / L),
-          c11(double(a + 1) / L, double(b + 1) / L);
+      dvec2 c00(double(a) / L, double(b) / L), c10(double(a + 1) / L, double(b) / L),
+          c01(double(a) / L, double(b + 1) / L), c11(double(a + 1) / L, double(b + 1) / L);
       out.insert(out.end(), {c00, c10, c11, c00, c11, c01, c00, c10, c01, c10, c11, c01});
     }
 }
@@ -309,7 +326,8 @@ bool lessPoints(const std::array<dvec2, N>& l, const std::array<dvec2, N>& r) {
 template <size_t N>
 void sortUnique(std::vector<std::array<dvec2, N>>& v) {
   std::sort(v.begin(), v.end(), lessPoints<N>);
-  v.erase(std::unique(v.begin(), v.end(), [](const auto& l, const auto& r) { return !lessPoints<N>(l, r) && !lessPoints<N>(r, l); }),
+  v.erase(std::unique(v.begin(), v.end(),
+                      [](const auto& l, const auto& r) { return !lessPoints<N>(l, r) && !lessPoints<N>(r, l); }),
           v.end());
 }
 

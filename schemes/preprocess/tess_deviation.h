@@ -3,9 +3,8 @@
 // grid and per power-of-two tessellation level, the largest vertical distance between the
 // surface the tessellator actually draws at that level and the true bilinear heightfield,
 // anywhere in the patch (not only at heightfield samples).
-#include <vector>
-
 #include <glm/vec2.hpp>
+#include <vector>
 
 namespace lb {
 

@@ -9,9 +9,9 @@ namespace lb {
 
 class Scheme;
 
-void benchSchemeUpdate(benchmark::State& state, const Scheme& scheme);   // Scheme::update, default params
-void benchDensityMap(benchmark::State& state, int size);                 // densityMap over a size^2 terrain
-void benchPlaneFit(benchmark::State& state, int size, bool book);        // fitPlanes (book or least squares)
+void benchSchemeUpdate(benchmark::State& state, const Scheme& scheme);  // Scheme::update, default params
+void benchDensityMap(benchmark::State& state, int size);                // densityMap over a size^2 terrain
+void benchPlaneFit(benchmark::State& state, int size, bool book);       // fitPlanes (book or least squares)
 // errbound's deviation table over a size^2 terrain of fine relief ("detail": "resolution", ~1 m
 // spacing like the large-terrain runs) with patches of 256 texels; reference: the oracle.
 void benchTessDeviation(benchmark::State& state, int size, bool reference);

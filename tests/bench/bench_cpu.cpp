@@ -2,11 +2,11 @@
 #include "bench.h"
 #include "camera/camera_path.h"
 #include "render/scheme.h"
-#include "shaders/shared.h"
 #include "schemes/preprocess/density_map.h"
-#include "terrain/heightfield.h"
 #include "schemes/preprocess/plane_fit.h"
 #include "schemes/preprocess/tess_deviation.h"
+#include "shaders/shared.h"
+#include "terrain/heightfield.h"
 
 namespace lb {
 

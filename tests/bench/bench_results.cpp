@@ -6,10 +6,10 @@
 
 #include "bench.h"
 #include "compare/significance.h"
-#include "metrics/image_metrics.h"
-#include "stats.h"
 #include "config/config.h"
+#include "metrics/image_metrics.h"
 #include "results/write.h"
+#include "stats.h"
 
 namespace lb {
 

@@ -50,7 +50,9 @@ void* operator new[](size_t n) {
       ASAN_POISON_MEMORY_REGION(block, kFccpBuffer);
     }
     inUse = true;
-    openBytes = lbFuzzInputSize >= kFccpBuffer ? kFccpBuffer : lbFuzzInputSize + 1 > kPrefix ? lbFuzzInputSize + 1 : kPrefix;
+    openBytes = lbFuzzInputSize >= kFccpBuffer  ? kFccpBuffer
+                : lbFuzzInputSize + 1 > kPrefix ? lbFuzzInputSize + 1
+                                                : kPrefix;
     ASAN_UNPOISON_MEMORY_REGION(block, openBytes);
     return block;
   }
@@ -71,7 +73,9 @@ void operator delete[](void* p) noexcept {
   ::operator delete(p);
 }
 
-void operator delete[](void* p, size_t) noexcept { operator delete[](p); }
+void operator delete[](void* p, size_t) noexcept {
+  operator delete[](p);
+}
 #else
 size_t lbFuzzInputSize = SIZE_MAX;
 #endif
