@@ -2,25 +2,25 @@
 #ifndef LODBENCH_SHARED_H
 #define LODBENCH_SHARED_H
 
-#define LB_BINDING_FRAME 0      // FrameUniforms, dynamic uniform buffer
-#define LB_BINDING_HEIGHT 1     // heightfield, R32F, read with texelFetch
-#define LB_BINDING_SCHEME_TEX 2 // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
+#define LB_BINDING_FRAME 0         // FrameUniforms, dynamic uniform buffer
+#define LB_BINDING_HEIGHT 1        // heightfield, R32F, read with texelFetch
+#define LB_BINDING_SCHEME_TEX 2    // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
 #define LB_BINDING_PATCH_BOUNDS 3  // per-patch (minHeight, maxHeight) for culling
-#define LB_BINDING_CAPTURE 4    // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
-#define LB_BINDING_SCHEME_BUF 5 // scheme storage buffer (e.g. tile adjacency)
-#define LB_BINDING_HISTOGRAM 7  // triangle-size histogram (measurement pass)
-#define LB_BINDING_SCHEME_IMAGE 6 // compute preprocessing only: the scheme texture as a storage image
-#define LB_BINDING_NORMAL 8     // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
+#define LB_BINDING_CAPTURE 4       // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
+#define LB_BINDING_SCHEME_BUF 5    // scheme storage buffer (e.g. tile adjacency)
+#define LB_BINDING_HISTOGRAM 7     // triangle-size histogram (measurement pass)
+#define LB_BINDING_SCHEME_IMAGE 6  // compute preprocessing only: the scheme texture as a storage image
+#define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
 
 #define LB_MAX_FACTOR 64.0
-#define LB_CAPTURE_STRIDE 8     // floats per patch in the capture buffer
-#define LB_SCHEME_PARAM_VEC4S 4 // up to 16 scheme parameters, at the slots of shaders/<scheme>_params.h
-#define LB_PLANE_FIT_BLOCK 16   // planefit: heightfield samples per block side (ch9 Listing 9.10 numthreads)
+#define LB_CAPTURE_STRIDE 8      // floats per patch in the capture buffer
+#define LB_SCHEME_PARAM_VEC4S 4  // up to 16 scheme parameters, at the slots of shaders/<scheme>_params.h
+#define LB_PLANE_FIT_BLOCK 16    // planefit: heightfield samples per block side (ch9 Listing 9.10 numthreads)
 
 #define LB_MODE_SHADED 0
 #define LB_MODE_HEATMAP 1
 #define LB_MODE_WIREFRAME 2
-#define LB_MODE_ERROR 3         // R32F target: screen-space geometric error in pixels
+#define LB_MODE_ERROR 3  // R32F target: screen-space geometric error in pixels
 // The modes below reach terrain.frag never or only with rasterization discarded; they are listed
 // so that lb::RenderMode (render/renderer.h) is checked against every value.
 #define LB_MODE_HISTOGRAM 4
@@ -36,7 +36,7 @@
 #define LB_HIST_BINS 15
 #define LB_HIST_OFFSCREEN 15
 #define LB_HIST_BACKFACING 16
-#define LB_HIST_AREA_LO 17     // exact sum of binned areas in 1/256 px^2, as a 64-bit pair
+#define LB_HIST_AREA_LO 17  // exact sum of binned areas in 1/256 px^2, as a 64-bit pair
 #define LB_HIST_AREA_HI 18
 #define LB_HIST_AREA_SCALE 256.0
 #define LB_HIST_COUNTERS 19
@@ -46,19 +46,20 @@
 namespace lb {
 // std140: every member is a vec4 or mat4, so the C++ layout matches without padding rules.
 struct FrameUniforms {
-  glm::mat4 viewProj;   // projection camera
-  glm::mat4 lodView;    // LOD camera (equals the projection camera except in popping passes)
+  glm::mat4 viewProj;  // projection camera
+  glm::mat4 lodView;   // LOD camera (equals the projection camera except in popping passes)
   glm::mat4 lodProj;
-  glm::vec4 lodEye;     // xyz: LOD camera position
-  glm::vec4 frustum[6]; // culling frustum planes (xyz normal inside, w), world space: the LOD camera's, or
-                        // the projection camera's (Renderer::setCullCamera)
-  glm::vec4 viewport;   // width, height, 1/width, 1/height in pixels
-  glm::vec4 terrain;    // extent, grid patches per side, heightfield width, heightfield height
-  glm::vec4 light;      // xyz: direction towards the light
+  glm::vec4 lodEye;      // xyz: LOD camera position
+  glm::vec4 frustum[6];  // culling frustum planes (xyz normal inside, w), world space: the LOD camera's, or
+                         // the projection camera's (Renderer::setCullCamera)
+  glm::vec4 viewport;    // width, height, 1/width, 1/height in pixels
+  glm::vec4 terrain;     // extent, grid patches per side, heightfield width, heightfield height
+  glm::vec4 light;       // xyz: direction towards the light
   glm::vec4 params[LB_SCHEME_PARAM_VEC4S];
-  glm::vec4 origin;     // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
+  glm::vec4 origin;  // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
 };
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 16, "std140 mirror");
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 16,
+              "std140 mirror");
 // Each push-constant mirror is pinned to its GLSL block's size (std430, as push constants are
 // laid out); tests/test_push_constants.cpp reads the same sizes back from the compiled SPIR-V.
 struct DrawPush {
@@ -67,7 +68,7 @@ struct DrawPush {
 static_assert(sizeof(DrawPush) == 4 && sizeof(DrawPush) <= LB_PUSH_CONSTANT_LIMIT, "push constant mirror");
 // Push constants of a scheme's compute preprocessing pass (shaders/*.comp define LB_COMPUTE_PASS).
 struct ComputePush {
-  glm::vec4 terrain;  // extent, grid patches per side, heightfield min height, max height
+  glm::vec4 terrain;                        // extent, grid patches per side, heightfield min height, max height
   glm::vec4 params[LB_SCHEME_PARAM_VEC4S];  // the scheme's parameters, packed as in FrameUniforms
 };
 static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16 && sizeof(ComputePush) <= LB_PUSH_CONSTANT_LIMIT,
@@ -77,7 +78,8 @@ static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16 && sizeof(C
 layout(push_constant) uniform ComputePush {
   vec4 terrain;
   vec4 params[LB_SCHEME_PARAM_VEC4S];
-} pass;
+}
+pass;
 #else
 layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
   mat4 viewProj;
@@ -90,10 +92,12 @@ layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
   vec4 light;
   vec4 params[LB_SCHEME_PARAM_VEC4S];
   vec4 origin;
-} frame;
+}
+frame;
 layout(push_constant) uniform DrawPush {
   uint firstPatch;
-} draw;
+}
+draw;
 #endif
 
 #endif

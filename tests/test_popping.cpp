@@ -6,8 +6,8 @@
 #include "config/config.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
-#include "metrics/popping.h"
 #include "replay/measure.h"
+#include "replay/popping.h"
 #include "results/write.h"
 
 using namespace lb;

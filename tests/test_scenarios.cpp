@@ -15,7 +15,7 @@
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"
 #include "metrics/image_metrics.h"
-#include "metrics/popping.h"
+#include "replay/popping.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "terrain/generators.h"

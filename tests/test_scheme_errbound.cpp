@@ -1,6 +1,6 @@
 // errbound (schemes/errbound.cpp): the deviation it precomputes bounds the true surface between
 // samples, it keeps its screen-space promise on every shipped path and on the real DEM, it is
-// exact and minimal on flat ground, it never cracks; and the surplus (metrics/surplus.h) it
+// exact and minimal on flat ground, it never cracks; and the surplus (replay/surplus.h) it
 // defines is 1 for itself and counts triangles as it should on flat ground.
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"
 #include "metrics/image_metrics.h"
-#include "metrics/surplus.h"
+#include "replay/surplus.h"
 #include "schemes/preprocess/tess_deviation.h"
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"

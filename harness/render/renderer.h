@@ -98,7 +98,7 @@ class Renderer {
   const SetupCosts& setupCosts() const { return setupCosts_; }
   // New values for the current scheme's parameters without rebuilding pipelines or preprocessing:
   // only for parameters that reach the shaders through the uniform block alone and leave maxLevel
-  // unchanged (errbound's max_error_px in the surplus search, metrics/surplus.h).
+  // unchanged (errbound's max_error_px in the surplus search, replay/surplus.h).
   void setUniformParams(const ParamValues& given) {
     params_ = resolveParams(scheme_->info(), given);
     scheme_->validate(params_);
@@ -117,7 +117,7 @@ class Renderer {
   std::vector<float> capturedLevels();
   // Which camera's frustum the control shaders cull with (FrameUniforms::frustum). Lod (default)
   // follows the design; View keeps culling live while the LOD camera is frozen, so a popping pass
-  // (metrics/popping.h) sees only level changes, not holes where the old frustum culled.
+  // (replay/popping.h) sees only level changes, not holes where the old frustum culled.
   enum class CullCamera { Lod, View };
   void setCullCamera(CullCamera c) { cullCamera_ = c; }
   // RenderSettings::sky for the frames submitted from now on (images for people between measurements).

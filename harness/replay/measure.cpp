@@ -6,8 +6,8 @@
 #include "error.h"
 #include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
-#include "metrics/popping.h"
 #include "render/image_io.h"
+#include "replay/popping.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
@@ -77,7 +77,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
     // Surplus: the error-bounded scheme's triangles at the bound whose measured p95 matches this
-    // frame's (metrics/surplus.h).
+    // frame's (replay/surplus.h).
     if (spec.on("surplus") && !e.empty()) {
       SurplusResult sr = refs.surplus.match(ctx, terrain, rs, current, s.p95, live.stats.clipInvocations);
       set("surplus", sr.surplus);

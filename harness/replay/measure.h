@@ -14,9 +14,9 @@
 #include "config/measure_spec.h"
 #include "metrics/frame_metrics.h"
 #include "metrics/image_metrics.h"
-#include "metrics/raycast_cache.h"
-#include "metrics/surplus.h"
 #include "render/renderer.h"
+#include "replay/raycast_cache.h"
+#include "replay/surplus.h"
 
 namespace lb {
 

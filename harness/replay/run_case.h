@@ -7,9 +7,9 @@
 #include <string>
 
 #include "config/config.h"
-#include "metrics/raycast_cache.h"
 #include "render/renderer.h"
 #include "replay/case_progress.h"
+#include "replay/raycast_cache.h"
 #include "results/write.h"
 
 namespace lb {

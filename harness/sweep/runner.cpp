@@ -12,8 +12,8 @@
 #include <set>
 
 #include "error.h"
-#include "metrics/raycast_cache.h"
 #include "render/terrain_fit.h"
+#include "replay/raycast_cache.h"
 #include "results/gbench_json.h"
 #include "results/run_dir.h"
 #include "results/run_json.h"

@@ -1,4 +1,4 @@
-#include "metrics/surplus.h"
+#include "replay/surplus.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
-#include "metrics/surplus.h"
 #include "render/renderer.h"
+#include "replay/surplus.h"
 
 namespace lb {
 

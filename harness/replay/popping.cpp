@@ -1,4 +1,4 @@
-#include "metrics/popping.h"
+#include "replay/popping.h"
 
 #include "metrics/image_metrics.h"
 #include "render/renderer.h"

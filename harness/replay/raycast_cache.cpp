@@ -1,4 +1,4 @@
-#include "metrics/raycast_cache.h"
+#include "replay/raycast_cache.h"
 
 #include <stb/stb_image.h>
 
