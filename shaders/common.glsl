@@ -1,4 +1,6 @@
 // Shared GLSL: heightfield sampling (bit-for-bit the same as lb::Heightfield::sample), camera helpers.
+#ifndef LB_COMMON_GLSL
+#define LB_COMMON_GLSL
 #include "shared.h"
 
 layout(set = 0, binding = LB_BINDING_HEIGHT) uniform sampler2D heightMap;
@@ -43,3 +45,5 @@ bool boxOutsideFrustum(vec3 lo, vec3 hi) {
   }
   return false;
 }
+
+#endif

@@ -12,6 +12,16 @@ layout(location = 0) out vec3 outWorld;
 layout(location = 1) out float outLevel;
 
 layout(set = 0, binding = LB_BINDING_HISTOGRAM, std430) buffer Histogram { uint counts[LB_HIST_COUNTERS]; } hist;
+// Instanced draw paths only: every triangle's world vertices, for the crack check on the drawn mesh
+// (metrics/mesh_cracks.h). Capacity is in triangles; past it triangles are counted, not stored.
+layout(constant_id = 2) const bool kCaptureMesh = false;
+layout(set = 0, binding = LB_BINDING_MESH, std430) buffer Mesh {
+  uint count;
+  uint capacity;
+  uint pad0, pad1;
+  vec4 vertices[];
+}
+mesh;
 
 bool outsideOnePlane(vec4 a, vec4 b, vec4 c) {
   return (a.x > a.w && b.x > b.w && c.x > c.w) || (a.x < -a.w && b.x < -b.w && c.x < -c.w) ||
@@ -43,8 +53,21 @@ void countTriangle() {
   if (before > 0xFFFFFFFFu - add) atomicAdd(hist.counts[LB_HIST_AREA_HI], 1u);
 }
 
+// Exact in float for the cases it is meant for: equal x,z give a zero difference, and three points
+// on one axis-parallel line give a zero product on each side.
+bool zeroGroundArea(vec3 a, vec3 b, vec3 c) {
+  vec2 u = b.xz - a.xz, v = c.xz - a.xz;
+  return u.x * v.y == u.y * v.x;
+}
+
 void main() {
   countTriangle();
+  if (zeroGroundArea(inWorld[0], inWorld[1], inWorld[2])) atomicAdd(hist.counts[LB_HIST_DEGENERATE], 1u);
+  if (kCaptureMesh) {
+    uint t = atomicAdd(mesh.count, 1u);
+    if (t < mesh.capacity)
+      for (int i = 0; i < 3; ++i) mesh.vertices[3 * t + i] = vec4(inWorld[i], 0.0);
+  }
   // Mesa 22.3 lavapipe crashes when a geometry shader after tessellation emits nothing, so the
   // triangle passes through; the pipeline discards rasterization.
   for (int i = 0; i < 3; ++i) {

@@ -11,6 +11,8 @@
 #define LB_BINDING_HISTOGRAM 7     // triangle-size histogram (measurement pass)
 #define LB_BINDING_SCHEME_IMAGE 6  // compute preprocessing only: the scheme texture as a storage image
 #define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
+#define LB_BINDING_INSTANCES 9     // instanced-grid path: InstanceRecord per instance (render/instanced.h)
+#define LB_BINDING_MESH 10         // measurement pass: captured triangles of the instanced path (analytic cracks)
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8      // floats per patch in the capture buffer
@@ -39,7 +41,11 @@
 #define LB_HIST_AREA_LO 17  // exact sum of binned areas in 1/256 px^2, as a 64-bit pair
 #define LB_HIST_AREA_HI 18
 #define LB_HIST_AREA_SCALE 256.0
-#define LB_HIST_COUNTERS 19
+// Triangles of zero area on the ground plane (two equal x,z or three on one axis-parallel line:
+// morph collapses, degenerate strips, clamped border slivers), counted beside the bins above, so
+// the bins and their sum are those of every triangle as before.
+#define LB_HIST_DEGENERATE 19
+#define LB_HIST_COUNTERS 20
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>

@@ -4,7 +4,7 @@
 // Rapp 2011, 5.2.4 and Figure 5-13). The position is the Phong surface itself, not the heightfield:
 // the thesis replaces displacement by Phong geometry, so the heightfield is read only at the corners.
 // Shape factor alpha (inShape, from the control shader): 0 = flat triangles, 1 = full Phong.
-#include "common.glsl"
+#include "terrain_vertex.glsl"
 #include "tri_eval.glsl"
 #include "phong.glsl"
 

@@ -25,6 +25,8 @@ namespace {
 // Deterministic per-frame figures: equal on the same device and driver, whatever the timing.
 const char* const kCounterFields[] = {"patches", "tes_invocations", "clip_invocations", "clip_primitives",
                                       "fragment_invocations"};
+// Counters that runs from before the draw paths lack: compared where the baseline has them.
+const char* const kNewerCounterFields[] = {"instances", "draws"};
 
 bool isExactMeasurement(const std::string& key) {
   return key.rfind("hist", 0) == 0 || key == "cracks_analytic" || key == "cracks_pixels";
@@ -64,6 +66,8 @@ std::string firstDifference(const json& b, const json& c, std::string& bv, std::
     const json& y = c.contains(f) ? c[f] : kAbsent;
     if (x != y) note(f, x, y);
   }
+  for (const char* f : kNewerCounterFields)
+    if (b.contains(f) && (!c.contains(f) || b[f] != c[f])) note(f, b[f], c.contains(f) ? c[f] : kAbsent);
   // A measurement the baseline has and the candidate lacks (or has as null) is a difference: a
   // pass that stopped working must not pass as "nothing to compare".
   for (auto& [key, x] : b.items()) {

@@ -1,4 +1,4 @@
-// Query pools of the frame ring: two timestamps and one statistics query per slot.
+// Query pools of the frame ring: three timestamps (top, LOD done, bottom) and one statistics query per slot.
 #include "render/gpu_profiler.h"
 
 #include <vector>
@@ -9,7 +9,7 @@
 namespace lb {
 
 namespace {
-enum Query : uint32_t { kQueryTop = 0, kQueryBottom = 1, kTimestampsPerSlot = 2 };
+enum Query : uint32_t { kQueryTop = 0, kQueryBottom = 1, kQueryLod = 2, kTimestampsPerSlot = 3 };
 }
 
 uint64_t timestampMaskFromValidBits(uint32_t validBits) {
@@ -17,7 +17,7 @@ uint64_t timestampMaskFromValidBits(uint32_t validBits) {
   return validBits >= 64 ? ~0ull : (1ull << validBits) - 1;
 }
 
-GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
+GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx), lodWritten_(size_t(slots), false) {
   // The queue family says how many timestamp bits are valid; wrap-around is masked with them.
   uint32_t n = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, nullptr);
@@ -48,6 +48,13 @@ GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx) {
 void GpuProfiler::reset(VkCommandBuffer cmd, int slot) {
   vkCmdResetQueryPool(cmd, timestamps_, uint32_t(slot) * kTimestampsPerSlot, kTimestampsPerSlot);
   vkCmdResetQueryPool(cmd, stats_, uint32_t(slot), 1);
+  lodWritten_[size_t(slot)] = false;
+}
+
+void GpuProfiler::timestampLod(VkCommandBuffer cmd, int slot) {
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_,
+                       uint32_t(slot) * kTimestampsPerSlot + kQueryLod);
+  lodWritten_[size_t(slot)] = true;
 }
 
 void GpuProfiler::timestampTop(VkCommandBuffer cmd, int slot) {
@@ -68,14 +75,20 @@ void GpuProfiler::endStats(VkCommandBuffer cmd, int slot) {
 }
 
 GpuSample GpuProfiler::read(int slot) {
-  uint64_t ts[kTimestampsPerSlot];
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(slot) * kTimestampsPerSlot, kTimestampsPerSlot,
-                                 sizeof ts, ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  // An unwritten query would never become available: read the LOD timestamp only when written.
+  const uint32_t n = lodWritten_[size_t(slot)] ? kTimestampsPerSlot : kQueryLod;
+  uint64_t ts[kTimestampsPerSlot] = {};
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(slot) * kTimestampsPerSlot, n, n * sizeof(uint64_t),
+                                 ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   uint64_t st[8];
   VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(slot), 1, sizeof st, st, sizeof st,
                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   GpuSample s;
   s.gpuMs = double((ts[kQueryBottom] - ts[kQueryTop]) & mask_) * periodNs_ * 1e-6;
+  if (n == kTimestampsPerSlot) {
+    s.lodMs = double((ts[kQueryLod] - ts[kQueryTop]) & mask_) * periodNs_ * 1e-6;
+    s.drawMs = double((ts[kQueryBottom] - ts[kQueryLod]) & mask_) * periodNs_ * 1e-6;
+  }
   // Results come in the order of the statistic bits: IA, VS, clipping (0x20, 0x40), FS (0x80),
   // then tessellation control (0x100) and evaluation (0x200).
   s.stats.iaVertices = st[0];

@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "vk/unique.h"
 
@@ -20,6 +21,9 @@ struct PipelineStats {
 
 struct GpuSample {
   double gpuMs = 0;  // closing minus opening timestamp, masked to the valid bits, x timestampPeriod
+  // With a LOD timestamp written (timestampLod): opening to LOD (the LOD work on the GPU) and LOD to
+  // closing (drawing); -1 without one (the tessellation path decides LOD inside its draws).
+  double lodMs = -1, drawMs = -1;
   PipelineStats stats;
 };
 
@@ -33,6 +37,8 @@ class GpuProfiler {
   void reset(VkCommandBuffer cmd, int slot);
   void timestampTop(VkCommandBuffer cmd, int slot);
   void timestampBottom(VkCommandBuffer cmd, int slot);
+  // Between the LOD work and the draws (draw paths whose LOD runs apart from drawing).
+  void timestampLod(VkCommandBuffer cmd, int slot);
   void beginStats(VkCommandBuffer cmd, int slot);
   void endStats(VkCommandBuffer cmd, int slot);
   // After the slot's fence: waits for its results (they are available by then).
@@ -47,6 +53,7 @@ class GpuProfiler {
   vk::Unique<VkQueryPool> timestamps_, stats_;
   uint64_t mask_ = 0;
   double periodNs_ = 0;
+  std::vector<bool> lodWritten_;
 };
 
 // Timestamp mask from a queue family's timestampValidBits (64 -> all bits, 0 -> none).

@@ -26,7 +26,7 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
   vi.vertexAttributeDescriptionCount = 1;
   vi.pVertexAttributeDescriptions = &va;
   VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+  ia.topology = desc.topology;
   VkPipelineTessellationStateCreateInfo ts{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
   ts.patchControlPoints = desc.controlPoints;
   VkViewport viewport{0, 0, float(desc.width), float(desc.height), 0, 1};
@@ -64,7 +64,7 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
   gi.pStages = stages.data();
   gi.pVertexInputState = &vi;
   gi.pInputAssemblyState = &ia;
-  gi.pTessellationState = &ts;
+  gi.pTessellationState = desc.topology == VK_PRIMITIVE_TOPOLOGY_PATCH_LIST ? &ts : nullptr;
   gi.pViewportState = &vp;
   gi.pRasterizationState = &rs;
   gi.pMultisampleState = &ms;

@@ -1,8 +1,8 @@
 #pragma once
-// The one place that builds a tessellation graphics pipeline, for the renderer and the probe alike,
-// so the probe's floor is measured with the renderer's fixed-function state: patch list of vec2
-// control points, no culling, dynamic rendering into an optional colour and an optional depth
-// attachment, one viewport the size of the frame.
+// The one place that builds a terrain graphics pipeline, for the renderer and the probe alike,
+// so the probe's floor is measured with the renderer's fixed-function state: a patch list (or, on
+// the instanced path, a triangle list) of vec2 points, no culling, dynamic rendering into an optional colour and an
+// optional depth attachment, one viewport the size of the frame.
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -24,6 +24,8 @@ struct ShaderStage {
 struct TessPipelineDesc {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   std::vector<ShaderStage> stages;
+  // PATCH_LIST for the tessellation path (controlPoints per patch), TRIANGLE_LIST for the instanced one.
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   uint32_t controlPoints = 4;
   uint32_t width = 0, height = 0;  // viewport and scissor
   VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;

@@ -67,6 +67,59 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   u.origin = glm::vec4(float(terrain_.originX), float(terrain_.originZ), 0.0f, 0.0f);
   scheme_->update(u, params_);
   std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
+  if (lod_) selectInstances(slots_[size_t(slotIndex)], slotIndex, u);
+}
+
+void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u) {
+  const double start = nowMs();
+  lod_->select(u, selection_);
+  if (selection_.instances.size() != footprintRanges_.size())
+    throw std::logic_error("scheme '" + scheme_->info().name + "' selected instances for " +
+                           std::to_string(selection_.instances.size()) + " footprints, it has " +
+                           std::to_string(footprintRanges_.size()));
+  const size_t total = selection_.instanceCount();
+  if (total > instanceCapacity_) {
+    // Frames in flight read the old buffer: wait for them (rare: the capacity only grows).
+    finish();
+    instanceCapacity_ = uint32_t(std::max<size_t>(256, total + total / 2));
+    instances_ = createBuffer(ctx_, VkDeviceSize(sizeof(InstanceRecord)) * instanceCapacity_ * kSlots,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    writeInstanceDescriptors();
+  }
+  // Each slot owns a region; draws reach it through firstInstance, which gl_InstanceIndex includes.
+  auto* out = static_cast<InstanceRecord*>(instances_.mapped) + size_t(slotIndex) * instanceCapacity_;
+  slot.instFirst.assign(footprintRanges_.size(), 0);
+  slot.instCount.assign(footprintRanges_.size(), 0);
+  uint32_t next = uint32_t(slotIndex) * instanceCapacity_;
+  uint64_t triangles = 0;
+  for (size_t f = 0; f < footprintRanges_.size(); ++f) {
+    const auto& records = selection_.instances[f];
+    std::memcpy(out, records.data(), records.size() * sizeof(InstanceRecord));
+    out += records.size();
+    slot.instFirst[f] = next;
+    slot.instCount[f] = uint32_t(records.size());
+    next += uint32_t(records.size());
+    triangles += uint64_t(records.size()) * (footprintRanges_[f].indexCount / 3);
+  }
+  if (captureMeshNext_) {
+    if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
+      meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
+      if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
+      mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+      writeInstanceDescriptors();
+    }
+    auto* head = static_cast<uint32_t*>(mesh_.mapped);
+    head[0] = 0;
+    head[1] = meshCapacity_;
+  }
+  slot.lodCpuMs = nowMs() - start;
+}
+
+void Renderer::drawInstances(VkCommandBuffer cmd, const Slot& slot) {
+  for (size_t f = 0; f < footprintRanges_.size(); ++f)
+    if (slot.instCount[f] > 0)
+      vkCmdDrawIndexed(cmd, footprintRanges_[f].indexCount, slot.instCount[f], footprintRanges_[f].firstIndex,
+                       footprintRanges_[f].vertexOffset, slot.instFirst[f]);
 }
 
 void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) {
@@ -117,6 +170,10 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   ri.pDepthAttachment = depth ? &da : nullptr;
 
   profiler_.timestampTop(cmd, slotIndex);
+  // The instanced path's LOD runs on the CPU before this frame (FrameResult::lodCpuMs): its LOD
+  // timestamp follows the opening one at once, the place where GPU LOD passes will run.
+  const bool instanced = lod_ != nullptr;
+  if (instanced) profiler_.timestampLod(cmd, slotIndex);
   vkCmdBeginRendering(cmd, &ri);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
   // planted slowdown below draw after the query ends.
@@ -129,6 +186,10 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
                             &dynOffset);
     vkCmdBindVertexBuffers(cmd, 0, 1, vertices_.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+    if (instanced) {
+      drawInstances(cmd, slot);
+      return;
+    }
     for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
       uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
       DrawPush push{first};
@@ -143,7 +204,16 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   profiler_.beginStats(cmd, slotIndex);
   drawAll(pipe);
   profiler_.endStats(cmd, slotIndex);
-  if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
+  if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback && instanced) {
+    // Planted regression on the instanced path: the first fraction of every footprint's instances again.
+    const double s = std::min(1.0, settings_.testSlowdown);
+    for (size_t f = 0; f < footprintRanges_.size(); ++f) {
+      uint32_t n = uint32_t(std::floor(slot.instCount[f] * s));
+      if (n > 0)
+        vkCmdDrawIndexed(cmd, footprintRanges_[f].indexCount, n, footprintRanges_[f].firstIndex,
+                         footprintRanges_[f].vertexOffset, slot.instFirst[f]);
+    }
+  } else if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
     // Planted regression (tests only), after the statistics query and before the closing timestamp:
     // the first fraction s of each eighth of the patches is drawn again (the share spreads over the
     // grid), split like the draws above, so GPU time grows by about s while the counters stay exact.
@@ -174,7 +244,8 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   }
   if (capture || mode == RenderMode::Histogram) {
     // The geometry stage may only be named where the device enables geometry shaders.
-    VkPipelineStageFlags2 writers = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
+    VkPipelineStageFlags2 writers =
+        instanced ? VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT : VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
     if (ctx_.enabledFeatures.geometryShader) writers |= VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
     memoryBarrier(cmd, writers, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_HOST_READ_BIT);
@@ -221,6 +292,17 @@ void Renderer::collect(int si) {
   r.gpuMs = sample.gpuMs;
   r.cpuMs = slot.cpuMs;
   r.stats = sample.stats;
+  r.lodMs = sample.lodMs;
+  r.drawMs = sample.drawMs;
+  if (lod_) {
+    r.lodCpuMs = slot.lodCpuMs;
+    for (uint32_t n : slot.instCount) {
+      r.instances += n;
+      r.draws += n > 0 ? 1 : 0;
+    }
+  } else {
+    r.draws = drawCount();
+  }
   r.harnessMs = slot.harnessMs + (nowMs() - readStart);
   completed_.push_back(r);
   slot.busy = false;
@@ -263,8 +345,20 @@ uint64_t TriangleHistogram::total() const {
 TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
   finish();
   std::memset(histogram_.mapped, 0, size_t(histogram_.size));
+  captureMeshNext_ = lod_ != nullptr;
   submitFrame(-1, view, lod, RenderMode::Histogram);
   finish();
+  captureMeshNext_ = false;
+  capturedMesh_.clear();
+  if (lod_) {
+    const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
+    if (head[0] > head[1])
+      throw std::logic_error("mesh capture: " + std::to_string(head[0]) + " triangles drawn, room for " +
+                             std::to_string(head[1]));
+    const auto* v = reinterpret_cast<const glm::vec4*>(static_cast<const char*>(mesh_.mapped) + 16);
+    capturedMesh_.reserve(size_t(head[0]) * 3);
+    for (size_t i = 0; i < size_t(head[0]) * 3; ++i) capturedMesh_.emplace_back(v[i]);
+  }
   auto done = takeCompleted();
   if (result && !done.empty()) *result = done.back();
   const auto* c = static_cast<const uint32_t*>(histogram_.mapped);
@@ -272,6 +366,7 @@ TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const Camer
   for (int i = 0; i < LB_HIST_BINS; ++i) h.bins[size_t(i)] = c[i];
   h.offscreen = c[LB_HIST_OFFSCREEN];
   h.backfacing = c[LB_HIST_BACKFACING];
+  h.degenerate = c[LB_HIST_DEGENERATE];
   h.areaSum = double((uint64_t(c[LB_HIST_AREA_HI]) << 32) | c[LB_HIST_AREA_LO]) / LB_HIST_AREA_SCALE;
   return h;
 }

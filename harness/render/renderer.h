@@ -1,11 +1,12 @@
 #pragma once
-// The one tessellation renderer shared by every scheme: offscreen colour + depth, a base grid of
-// N x N patches over the heightfield, and a ring of frames in flight whose timestamps and
-// pipeline statistics are read after each frame's fence without stalling the next frame.
+// The one renderer shared by every scheme: offscreen colour + depth, one of two draw paths (a base
+// grid of N x N tessellated patches, or a scheme's CPU-selected instanced footprints), and a ring of frames in flight
+// whose timestamps and pipeline statistics are read after each frame's fence without stalling the next frame.
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,8 @@ enum class RenderMode { Shaded = 0, Heatmap = 1, Wireframe = 2, Error = 3, Histo
 struct TriangleHistogram {
   std::array<uint64_t, 15> bins{};  // < 1/8 px, [1/8, 1/4), ..., [512, 1024), >= 1024 px
   uint64_t offscreen = 0, backfacing = 0;
-  double areaSum = 0;  // exact sum of the binned (on-screen, front-facing) areas in px^2 (1/256 px^2 steps)
+  uint64_t degenerate = 0;  // of all the above: zero area on the ground plane (LB_HIST_DEGENERATE), not an extra bin
+  double areaSum = 0;       // exact sum of the binned (on-screen, front-facing) areas in px^2 (1/256 px^2 steps)
   uint64_t total() const;
 };
 
@@ -62,6 +64,12 @@ struct FrameResult {
   // of its queries (the fence wait is left out: that is the GPU's time, not the harness's).
   double harnessMs = 0;
   PipelineStats stats;
+  // Draw paths whose LOD runs apart from drawing (instanced grid): GPU time of the LOD work and of
+  // the draws (GpuSample), and the CPU selection plus its upload (inside harnessMs). -1 = none
+  // (tessellation: the LOD decision runs inside the draws).
+  double lodMs = -1, drawMs = -1, lodCpuMs = -1;
+  uint64_t instances = 0;  // instanced path: instances drawn (all footprints)
+  uint32_t draws = 0;      // draw calls of the terrain
 };
 
 // Camera matrices in Vulkan conventions (y down in clip space, depth in [0,1]).
@@ -134,6 +142,12 @@ class Renderer {
   uint32_t patchCount() const { return patchCount_; }
   uint32_t patchesPerDraw() const { return patchesPerDraw_; }
   uint32_t drawCount() const { return (patchCount_ + patchesPerDraw_ - 1) / patchesPerDraw_; }
+  DrawPath path() const { return scheme_ ? scheme_->info().path : DrawPath::Tessellation; }
+  // Instanced path: the selection of the last frame submitted (its counters feed countFrame).
+  const Selection& lastSelection() const { return selection_; }
+  // Instanced path: every triangle's three world vertices drawn by the last measureHistogram
+  // (captured by the histogram's geometry shader); empty on the tessellation path.
+  const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
 
  private:
   struct Slot {
@@ -144,6 +158,9 @@ class Renderer {
     double cpuMs = 0;
     double harnessMs = 0;  // host time spent in submitFrame (uniforms, recording, submit)
     bool readback = false;
+    // Instanced path: this frame's first instance and count per footprint, and its CPU LOD time.
+    std::vector<uint32_t> instFirst, instCount;
+    double lodCpuMs = -1;
   };
   static constexpr int kSlots = 2;
 
@@ -154,6 +171,10 @@ class Renderer {
   void record(Slot& slot, int slotIndex, RenderMode mode, bool capture);
   void collect(int slotIndex);
   void fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod);
+  void selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u);
+  void createFootprints();
+  void writeInstanceDescriptors();
+  void drawInstances(VkCommandBuffer cmd, const Slot& slot);
 
   // Every Vulkan object below is owned by a vk::Unique (directly or through Buffer, Image and
   // Bindings): when the constructor throws half-way, the members built so far release theirs.
@@ -180,6 +201,21 @@ class Renderer {
   uint32_t patchCount_ = 0, controlPoints_ = 4, patchesPerDraw_ = 1;
   double lastSubmitMs_ = -1;
   CullCamera cullCamera_ = CullCamera::Lod;
+  // Instanced path (render/instanced.h): the scheme's LOD state, each footprint's range in the
+  // vertex and index buffers, the instance buffer (kSlots regions of instanceCapacity_ records,
+  // host-visible, written in fillUniforms) and the mesh capture of measurement passes.
+  struct FootprintRange {
+    uint32_t firstIndex = 0, indexCount = 0;
+    int32_t vertexOffset = 0;
+  };
+  std::unique_ptr<InstancedLod> lod_;
+  std::vector<FootprintRange> footprintRanges_;
+  Selection selection_;
+  Buffer instances_, mesh_;
+  uint32_t instanceCapacity_ = 0;
+  uint32_t meshCapacity_ = 0;  // triangles
+  bool captureMeshNext_ = false;
+  std::vector<glm::vec3> capturedMesh_;
 };
 
 }  // namespace lb

@@ -90,7 +90,15 @@ void Renderer::createTargets() {
 }
 
 void Renderer::createGrid() {
-  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_}) *b = {};
+  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &instances_, &mesh_}) *b = {};
+  lod_.reset();
+  footprintRanges_.clear();
+  selection_ = {};
+  instanceCapacity_ = meshCapacity_ = 0;
+  if (scheme_->info().path == DrawPath::InstancedGrid) {
+    createFootprints();
+    return;
+  }
   Topology topo = scheme_->info().topology;
   controlPoints_ = controlPointCount(topo);
   PatchGeometry g = scheme_->patchGeometry(terrain_, params_, settings_.grid);
@@ -124,6 +132,36 @@ void Renderer::createGrid() {
   patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));
 }
 
+void Renderer::createFootprints() {
+  const std::string& name = scheme_->info().name;
+  lod_ = scheme_->instancedLod(terrain_, params_);
+  if (!lod_) throw std::logic_error("scheme '" + name + "' is instanced but supplies no InstancedLod");
+  std::vector<glm::vec2> vertices;
+  std::vector<uint32_t> indices;
+  for (const Footprint& f : lod_->footprints()) {
+    if (f.indices.empty() || f.indices.size() % 3 != 0)
+      throw std::logic_error("scheme '" + name + "': footprint '" + f.name + "' is no triangle list");
+    for (uint32_t i : f.indices)
+      if (i >= f.vertices.size())
+        throw std::logic_error("scheme '" + name + "': footprint '" + f.name + "' index out of range");
+    footprintRanges_.push_back({uint32_t(indices.size()), uint32_t(f.indices.size()), int32_t(vertices.size())});
+    vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
+    indices.insert(indices.end(), f.indices.begin(), f.indices.end());
+  }
+  if (footprintRanges_.empty()) throw std::logic_error("scheme '" + name + "' supplied no footprints");
+  auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
+  vertices_ = createBufferWithData(ctx_, vertices.data(), bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  indices_ = createBufferWithData(ctx_, indices.data(), bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  // No patches: the bindings the tessellation path reads stay valid and unused.
+  const float zeros[8] = {};
+  bounds_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  schemeBuf_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  capture_ = createBuffer(ctx_, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  std::memset(capture_.mapped, 0, size_t(capture_.size));
+  patchCount_ = 0;
+  patchesPerDraw_ = 1;
+}
+
 void Renderer::createDescriptors() {
   const VkShaderStageFlags all = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
   bindings_ =
@@ -135,7 +173,9 @@ void Renderer::createDescriptors() {
                       {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
                       {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
                       {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                      {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                      {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
                      all, sizeof(DrawPush));
 }
 
@@ -207,6 +247,30 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &ni, nullptr),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
+  writeInstanceDescriptors();
+}
+
+void Renderer::writeInstanceDescriptors() {
+  // Both bindings exist on every path (one pipeline layout); minimal buffers until a frame needs more.
+  if (!instances_.buffer) {
+    instanceCapacity_ = 0;
+    instances_ = createBuffer(ctx_, sizeof(InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  }
+  if (!mesh_.buffer) {
+    meshCapacity_ = 0;
+    mesh_ = createBuffer(ctx_, 16 + 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memset(mesh_.mapped, 0, size_t(mesh_.size));
+  }
+  VkDescriptorBufferInfo ib{instances_.buffer, 0, VK_WHOLE_SIZE}, mb{mesh_.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+  w[0].dstSet = w[1].dstSet = bindings_.set;
+  w[0].dstBinding = LB_BINDING_INSTANCES;
+  w[1].dstBinding = LB_BINDING_MESH;
+  w[0].descriptorCount = w[1].descriptorCount = 1;
+  w[0].descriptorType = w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w[0].pBufferInfo = &ib;
+  w[1].pBufferInfo = &mb;
+  vkUpdateDescriptorSets(ctx_.device, 2, w, 0, nullptr);
 }
 
 VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
@@ -230,6 +294,11 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   } fragValues{int(mode), settings_.testHeightNormals};
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
+  // The instanced path's histogram pass also captures the drawn mesh (analytic cracks).
+  const bool instanced = info.path == DrawPath::InstancedGrid;
+  VkBool32 meshValue = instanced;
+  VkSpecializationMapEntry meshEntry{2, 0, sizeof(VkBool32)};
+  VkSpecializationInfo meshSpec{1, &meshEntry, sizeof(VkBool32), &meshValue};
   VkSpecializationMapEntry fragEntries[2] = {{0, offsetof(FragSpec, mode), sizeof(int)},
                                              {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)}};
   VkSpecializationInfo modeSpec{2, fragEntries, sizeof(FragSpec), &fragValues};
@@ -237,12 +306,18 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
 
   TessPipelineDesc d;
   d.layout = bindings_.pipelineLayout;
-  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, "terrain.vert.spv"},
-              {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, info.tesc + ".tesc.spv", &captureSpec},
-              {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-               info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv"}};
+  if (instanced) {
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, info.vert + ".vert.spv"}};
+    d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  } else {
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, "terrain.vert.spv"},
+                {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, info.tesc + ".tesc.spv", &captureSpec},
+                {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
+                 info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv"}};
+  }
   if (colour) d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, "terrain.frag.spv", &modeSpec});
-  if (histogram) d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv"});
+  if (histogram)
+    d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", instanced ? &meshSpec : nullptr});
   d.controlPoints = controlPoints_;
   d.width = uint32_t(settings_.width);
   d.height = uint32_t(settings_.height);

@@ -7,12 +7,18 @@
 #include <string>
 #include <vector>
 
+#include "render/instanced.h"
+
 namespace lb {
 
 struct FrameUniforms;
 struct Heightfield;
 
 enum class Topology { Quad4, Quad12, Tri3 };
+// How a scheme's triangles reach the rasterizer (docs/draw-paths.md). Tessellation: patches of the
+// base grid through the scheme's control shader. InstancedGrid: CPU-selected instances of a few
+// index meshes (render/instanced.h) through the scheme's vertex shader.
+enum class DrawPath { Tessellation, InstancedGrid };
 enum class Partitioning { Integer, FractionalEven, FractionalOdd };
 
 struct ParamSpec {
@@ -48,9 +54,11 @@ struct SchemeInfo {
   // comparison searches it. "" = none (a scheme without parameters).
   std::string mainParam;
   MainParamRole mainParamRole = MainParamRole::Knob;
+  DrawPath path = DrawPath::Tessellation;
+  std::string vert;  // InstancedGrid: shaders/<vert>.vert (includes terrain_vertex.glsl)
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
-  std::string tesc;                   // shader stem: shaders/<tesc>.tesc
+  std::string tesc;                   // Tessellation: shader stem, shaders/<tesc>.tesc
   std::string tese = "terrain_quad";  // shared evaluation shader stem
   bool culls = false;                 // may output factor 0 for patches outside the frustum
   // Compute preprocessing: shaders/<compute>.comp writes the scheme texture once in setScheme
@@ -129,6 +137,9 @@ class Scheme {
   // For a scheme with a compute pre-pass (SchemeInfo::compute): the CPU reference of the texture
   // the pass writes, so load-time costs can be measured without a device. Empty = none.
   virtual SchemeTexture computeReference(const Heightfield&, const ParamValues&) const { return {}; }
+  // DrawPath::InstancedGrid: the per-terrain LOD state (footprints, trees, tables) that selects
+  // each frame's instances on the CPU. Built once per setScheme.
+  virtual std::unique_ptr<InstancedLod> instancedLod(const Heightfield&, const ParamValues&) const { return nullptr; }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.

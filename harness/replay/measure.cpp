@@ -40,6 +40,10 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   FrameResult live;
   m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded, &live)};
   std::vector<float> levels = r.capturedLevels();
+  // The instanced path decides its LOD on the CPU: the scheme's own counts of this pose are those of
+  // the selection just drawn, taken before another pass selects again.
+  const bool instanced = r.path() == DrawPath::InstancedGrid;
+  const std::vector<double> selectionCounts = instanced ? r.lastSelection().counters : std::vector<double>{};
 
   bool histogram = spec.on("histogram");
   if (histogram) try {
@@ -58,6 +62,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     for (size_t i = 0; i < h.bins.size(); ++i) set("hist_" + std::to_string(i), double(h.bins[i]));
     set("hist_offscreen", double(h.offscreen));
     set("hist_backfacing", double(h.backfacing));
+    set("hist_degenerate", double(h.degenerate));
     set("tri_area_mean", hs.meanArea);
     set("tri_area_median", hs.medianArea);
     set("tri_frac_under_1px", hs.fracUnder1px);
@@ -108,10 +113,12 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_p99", pop.p99);
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
   }
-  set("saturated_patches", saturatedPatches(levels, scheme.partitioning(params)));
+  // Saturation is a tessellation level at its cap; the instanced path's schemes count their own
+  // limits (SchemeInfo::counters).
+  set("saturated_patches", instanced ? kNan : saturatedPatches(levels, scheme.partitioning(params)));
   const std::vector<SchemeCounter>& counters = scheme.info().counters;
   if (!counters.empty()) {
-    std::vector<double> counts = scheme.countFrame(levels);
+    std::vector<double> counts = instanced ? selectionCounts : scheme.countFrame(levels);
     for (size_t i = 0; i < counters.size(); ++i) set(counters[i].frameKey, i < counts.size() ? counts[i] : kNan);
   }
   return m;

@@ -102,8 +102,12 @@ static json number(double v) {
 
 json caseSummary(const CaseResult& r) {
   if (r.frames.empty()) return json::object();
-  std::vector<double> gpu, cpu, tris, patches, tes, frags, harness;
+  std::vector<double> gpu, cpu, tris, patches, tes, frags, harness, lod, draw, lodCpu, instances;
   for (auto& f : r.frames) {
+    if (f.lodMs >= 0) lod.push_back(f.lodMs);
+    if (f.drawMs >= 0) draw.push_back(f.drawMs);
+    if (f.lodCpuMs >= 0) lodCpu.push_back(f.lodCpuMs);
+    if (f.lodCpuMs >= 0) instances.push_back(double(f.instances));
     gpu.push_back(f.gpuMs);
     cpu.push_back(f.cpuMs);
     harness.push_back(f.harnessMs);
@@ -124,6 +128,12 @@ json caseSummary(const CaseResult& r) {
               {"tes_invocations", summaryOf(tes)},
               {"fragment_invocations", summaryOf(frags)}};
   out["cpu_harness_ms"] = summaryOf(harness);
+  // Draw paths that decide LOD apart from drawing (docs/results-format.md); null on the tessellation
+  // path, whose LOD decision runs inside its draws (gpu_ms_frontend is the proxy there).
+  out["lod_ms"] = lod.empty() ? json(nullptr) : summaryOf(lod);
+  out["draw_ms"] = draw.empty() ? json(nullptr) : summaryOf(draw);
+  out["lod_cpu_ms"] = lodCpu.empty() ? json(nullptr) : summaryOf(lodCpu);
+  out["instances"] = instances.empty() ? json(nullptr) : summaryOf(instances);
   for (auto& [mode, frames] : r.modeFrames) {  // timing modes: gpu_ms_depth, gpu_ms_frontend
     std::vector<double> ms;
     for (auto& f : frames) ms.push_back(f.gpuMs);
@@ -135,7 +145,7 @@ json caseSummary(const CaseResult& r) {
   std::map<std::string, std::vector<double>> series;
   std::map<std::string, std::pair<double, int>> worst;  // metric -> (value, frame)
   std::vector<uint64_t> histTotal(LB_HIST_BINS, 0);
-  uint64_t offscreen = 0, backfacing = 0;
+  uint64_t offscreen = 0, backfacing = 0, degenerate = 0;
   int saturatedFrames = 0;
   // Schemes' own counters (SchemeInfo::counters): per frame key, the measured frames above 0.
   std::vector<const SchemeCounter*> counters;
@@ -157,6 +167,7 @@ json caseSummary(const CaseResult& r) {
       for (size_t i = 0; i < histTotal.size(); ++i) histTotal[i] += m.histogram.bins[i];
       offscreen += m.histogram.offscreen;
       backfacing += m.histogram.backfacing;
+      degenerate += m.histogram.degenerate;
     }
   }
   for (auto& [k, v] : series) out[k] = summaryOf(v);
@@ -171,6 +182,7 @@ json caseSummary(const CaseResult& r) {
   out["hist_total"] = anyHistogram ? json(histTotal) : json(nullptr);
   out["hist_offscreen_total"] = anyHistogram ? json(offscreen) : json(nullptr);
   out["hist_backfacing_total"] = anyHistogram ? json(backfacing) : json(nullptr);
+  out["hist_degenerate_total"] = anyHistogram ? json(degenerate) : json(nullptr);
   if (!unavailable.empty()) out["unavailable"] = unavailable;
   out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
   for (const SchemeCounter* counter : counters)
@@ -222,7 +234,15 @@ json caseJson(const Case& c, const CaseResult& r) {
                 {"tes_invocations", f.stats.tesInvocations},
                 {"clip_invocations", f.stats.clipInvocations},
                 {"clip_primitives", f.stats.clipPrimitives},
-                {"fragment_invocations", f.stats.fsInvocations}};
+                {"fragment_invocations", f.stats.fsInvocations},
+                {"draws", f.draws}};
+    // The instanced path's split of the frame (FrameResult); absent on the tessellation path.
+    if (f.lodCpuMs >= 0) {
+      rec["instances"] = f.instances;
+      rec["lod_ms"] = f.lodMs;
+      rec["draw_ms"] = f.drawMs;
+      rec["lod_cpu_ms"] = f.lodCpuMs;
+    }
     for (auto& [mode, mf] : r.modeFrames)
       if (fi < mf.size()) rec["gpu_ms_" + mode] = mf[fi].gpuMs;
     auto it = measured.find(f.frame);
@@ -232,10 +252,12 @@ json caseJson(const Case& c, const CaseResult& r) {
         rec["hist"] = m.histogram.bins;
         rec["hist_offscreen"] = m.histogram.offscreen;
         rec["hist_backfacing"] = m.histogram.backfacing;
+        rec["hist_degenerate"] = m.histogram.degenerate;
       } else if (m.unavailable.count("histogram")) {
         rec["hist"] = nullptr;
         rec["hist_offscreen"] = nullptr;
         rec["hist_backfacing"] = nullptr;
+        rec["hist_degenerate"] = nullptr;
       }
       if (!m.unavailable.empty()) rec["unavailable"] = m.unavailable;
       for (auto& [k, v] : m.values)

@@ -1,0 +1,61 @@
+#pragma once
+// The instanced-grid draw path (docs/draw-paths.md): a scheme that decides its LOD on the CPU hands
+// the renderer a few index meshes ("footprints") once, and every frame the instances of each; the
+// renderer draws each footprint with one instanced indexed draw. No tessellation stage runs.
+//
+// Lattice units: footprint vertices and instance placements are integers (held exactly in float)
+// counted in the finest cell of the scheme, c = extent / ((samples - 1) * cells_per_texel) along
+// each axis, terrain-local (the terrain origin is added on the GPU). A vertex shared by two
+// instances is therefore computed from the same integers on both sides and is bit-identical.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace lb {
+
+struct FrameUniforms;
+
+// One index mesh, triangle list, in lattice units relative to its instance's placement.
+struct Footprint {
+  std::string name;                 // for listings and errors ("block", "fixup", "trim", ...)
+  std::vector<glm::vec2> vertices;  // integer lattice coordinates
+  std::vector<uint32_t> indices;    // triangle list
+};
+
+// What the scheme's vertex shader reads at gl_InstanceIndex (shaders/terrain_vertex.glsl
+// LB_BINDING_INSTANCES): two vec4 whose meaning belongs to the scheme.
+struct InstanceRecord {
+  glm::vec4 a{0.0f}, b{0.0f};
+};
+static_assert(sizeof(InstanceRecord) == 32, "std430 mirror of shaders/terrain_vertex.glsl InstanceRecord");
+
+// One frame's selection: the instances of every footprint (same order as footprints()), and the
+// scheme's own per-frame counts in SchemeInfo::counters order.
+struct Selection {
+  std::vector<std::vector<InstanceRecord>> instances;
+  std::vector<double> counters;
+  size_t instanceCount() const {
+    size_t n = 0;
+    for (const auto& v : instances) n += v.size();
+    return n;
+  }
+};
+
+// The per-terrain LOD state of an instanced scheme: built once per (terrain, parameters) by
+// Scheme::instancedLod (quadtrees, error tables), then asked for a selection every frame.
+class InstancedLod {
+ public:
+  virtual ~InstancedLod() = default;
+  virtual const std::vector<Footprint>& footprints() const = 0;
+  // From the frame's LOD camera (lodEye, lodView, lodProj), culling frustum, viewport (the LOD
+  // resolution) and terrain origin; must depend on nothing else (popping and matched searches
+  // re-run it for other cameras). `out` is reused between frames: clear what you fill.
+  virtual void select(const FrameUniforms& frame, Selection& out) const = 0;
+};
+
+// Finest lattice cell of a terrain of width x height samples at `cellsPerTexel` cells per sample
+// spacing, in world units along x and z.
+glm::dvec2 latticeCell(float extent, int width, int height, double cellsPerTexel);
+
+}  // namespace lb
