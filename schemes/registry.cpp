@@ -14,12 +14,14 @@ const Scheme& referenceScheme();
 const Scheme& planeFitScheme();
 const Scheme& errBoundScheme();
 const Scheme& sphereEdgeScheme();
+const Scheme& cdlodScheme();
+const Scheme& cdlodSseScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
       &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
-      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(),
+      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(), &cdlodScheme(),     &cdlodSseScheme(),
   };
   return schemes;
 }

@@ -1,5 +1,5 @@
 // The instanced-grid draw path against the tessellation path: `uniform` drawn as instanced grids
-// (tests/uniform_vs_scheme.h) must give uniform's triangles, histogram totals and error pixels, and
+// (render/uniform_instanced.h) must give uniform's triangles, histogram totals and error pixels, and
 // one instanced draw past lavapipe's 16-bit limits must equal the same work in many draws.
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "gpu_fixture.h"
 #include "render/renderer.h"
-#include "uniform_vs_scheme.h"
+#include "render/uniform_instanced.h"
 
 using namespace lb;
 using namespace lbtest;
@@ -44,7 +44,7 @@ TEST_F(DrawPaths, InstancedUniformDrawsUniformsTrianglesAndErrorOnEveryShippedPa
   Renderer tess(gpu(), hf, {160, 90, grid});
   Renderer inst(gpu(), hf, {160, 90, grid});
   tess.setScheme(*findScheme("uniform"), {{"level", level}});
-  inst.setScheme(uniformVsScheme(), {{"level", level}, {"diagonal", 2}});
+  inst.setScheme(uniformInstancedScheme(), {{"level", level}, {"diagonal", 2}});
   int frames = 0;
   for (const std::string& file : shippedPaths()) {
     CameraPath path = loadCameraPath(file);
@@ -86,8 +86,8 @@ TEST_F(DrawPaths, OneLargeInstancedDrawEqualsTheSameWorkInManyDraws) {
   const Heightfield& hf = testTerrain();
   Renderer one(gpu(), hf, {160, 90, 8});
   Renderer many(gpu(), hf, {160, 90, 8});
-  one.setScheme(uniformVsScheme(), {{"level", 64}, {"split", 1}});
-  many.setScheme(uniformVsScheme(), {{"level", 64}, {"split", 64}});
+  one.setScheme(uniformInstancedScheme(), {{"level", 64}, {"split", 1}});
+  many.setScheme(uniformInstancedScheme(), {{"level", 64}, {"split", 64}});
   CameraPose pose = overviewPose();
   FrameResult r1, rm;
   std::vector<uint8_t> a = one.renderImage(pose, pose, RenderMode::Shaded, &r1);
@@ -110,7 +110,7 @@ TEST_F(DrawPaths, InstancedFramesReportLodAndDrawTimesTessellationDoesNot) {
   Renderer tess(gpu(), hf, {64, 64, 8});
   Renderer inst(gpu(), hf, {64, 64, 8});
   tess.setScheme(*findScheme("uniform"), {{"level", 4}});
-  inst.setScheme(uniformVsScheme(), {{"level", 4}});
+  inst.setScheme(uniformInstancedScheme(), {{"level", 4}});
   FrameResult t = renderOnce(tess, overviewPose()), i = renderOnce(inst, overviewPose());
   EXPECT_EQ(t.lodMs, -1);
   EXPECT_EQ(t.drawMs, -1);

@@ -1,5 +1,6 @@
 // Every registered scheme: builds, renders the shipped paths without validation errors, repeats
-// its counters exactly, keeps every factor in [1, 64] (or 0 = culled), rejects bad parameters.
+// its counters exactly, keeps every factor in [1, 64] (or 0 = culled; none on the instanced path),
+// rejects bad parameters.
 #include <cmath>
 #include <set>
 
@@ -44,7 +45,13 @@ TEST_P(EveryScheme, RendersShippedPathsDeterministicallyWithinLimits) {
       EXPECT_EQ(a.stats.clipInvocations, b.stats.clipInvocations);
       EXPECT_EQ(a.stats.clipPrimitives, b.stats.clipPrimitives);
       EXPECT_EQ(a.stats.fsInvocations, b.stats.fsInvocations);
-      EXPECT_EQ(a.stats.tcsPatches, r.patchCount());
+      EXPECT_EQ(a.stats.tcsPatches, r.patchCount());  // 0 on the instanced path
+      EXPECT_EQ(a.instances, b.instances);
+      EXPECT_EQ(a.draws, b.draws);
+      if (r.path() == DrawPath::InstancedGrid) {
+        EXPECT_GT(a.instances, 0u);
+        EXPECT_EQ(a.stats.clipInvocations, a.stats.iaPrimitives) << "no tessellation: one primitive a triangle";
+      }
       EXPECT_GT(a.stats.clipInvocations, 0u) << "the terrain is in view on every shipped path";
       r.renderImage(pose, pose, RenderMode::Shaded);
       auto levels = r.capturedLevels();
@@ -104,7 +111,8 @@ TEST(Registry, NamesAreUniqueAndDescribed) {
     EXPECT_TRUE(names.insert(i.name).second) << i.name;
     EXPECT_FALSE(i.description.empty()) << i.name;
     EXPECT_FALSE(i.seed.empty()) << i.name;
-    EXPECT_FALSE(i.tesc.empty()) << i.name;
+    // Each path's LOD shader: the control shader, or the instanced path's vertex shader.
+    EXPECT_FALSE((i.path == DrawPath::Tessellation ? i.tesc : i.vert).empty()) << i.name;
     EXPECT_LE(i.params.size(), size_t(LB_SCHEME_PARAM_VEC4S * 4)) << i.name;
   }
 }

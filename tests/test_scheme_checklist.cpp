@@ -79,21 +79,25 @@ std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& 
   auto need = [&](bool ok, const std::string& what) {
     if (!ok) missing.push_back(what);
   };
-  // Shaders, and the parameter header they share with the C++ side.
-  const std::string tesc = "shaders/" + info.tesc + ".tesc";
-  need(exists(tesc), tesc);
+  // Shaders, and the parameter header they share with the C++ side: the LOD shader is the control
+  // shader on the tessellation path and the vertex shader on the instanced one.
+  const bool instanced = info.path == DrawPath::InstancedGrid;
+  const std::string stem = instanced ? info.vert : info.tesc;
+  const std::string lodShader = stem + (instanced ? ".vert" : ".tesc");
+  const std::string tesc = "shaders/" + lodShader;
+  need(!stem.empty() && exists(tesc), tesc);
   if (!info.compute.empty()) need(exists("shaders/" + info.compute + ".comp"), "shaders/" + info.compute + ".comp");
   if (!info.params.empty()) {
-    const std::string header = info.tesc + "_params.h";
+    const std::string header = stem + "_params.h";
     auto slots = defines(header);
     need(!slots.empty(), "shaders/" + header + " (its parameter slots)");
     for (const ParamSpec& p : info.params) {
-      const std::string macro = "LB_" + upper(info.tesc) + "_" + upper(p.name);
+      const std::string macro = "LB_" + upper(stem) + "_" + upper(p.name);
       need(slots.count(macro) && slots[macro] == std::to_string(p.slot),
            "shaders/" + header + ": #define " + macro + " " + std::to_string(p.slot));
     }
     std::set<std::string> seen;
-    need(shaderWithIncludes(info.tesc + ".tesc", seen).find("#include \"" + header + "\"") != std::string::npos,
+    need(shaderWithIncludes(lodShader, seen).find("#include \"" + header + "\"") != std::string::npos,
          tesc + ": #include \"" + header + "\" (directly or through a .glsl it includes)");
   }
   // The main parameter names a parameter; the default job sweeps it (a front needs several values).

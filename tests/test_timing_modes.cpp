@@ -9,6 +9,7 @@
 #include "error.h"
 #include "gpu_fixture.h"
 #include "render/probe.h"
+#include "render/uniform_instanced.h"
 #include "replay/timing_passes.h"
 #include "sweep/runner.h"
 
@@ -66,6 +67,7 @@ TEST(TimingModes, CounterMismatchIsNamed) {
 }
 
 class Probe : public lbtest::GpuTest, public ::testing::WithParamInterface<std::tuple<RenderMode, bool>> {};
+class ProbeInstanced : public lbtest::GpuTest {};
 
 // The minimal loop runs, times positive, and does exactly the tessellation work of lodbench's
 // uniform scheme at the same grid, level and camera; so does its vertex-height variant.
@@ -100,6 +102,36 @@ TEST_P(Probe, MatchesUniformSchemeWork) {
     EXPECT_GT(p.stats.fsInvocations, 0u);
   }
 }
+// The instanced minimal loop draws the tessellated loop's triangles, and exactly the renderer's
+// instanced path at the same grid, level and camera (counters and fragments).
+TEST_F(ProbeInstanced, DrawsTheTessellatedLoopsTrianglesAndTheRenderersInstancedWork) {
+  const int grid = 4, level = 6;
+  auto pose = lbtest::overviewPose();
+  ProbeOptions o;
+  o.width = 96;
+  o.height = 64;
+  o.grid = grid;
+  o.level = level;
+  o.warmup = 1;
+  o.frames = 3;
+  ProbeResult tess = runProbe(gpu(), testTerrain(), pose, o);
+  o.instanced = true;
+  ProbeResult inst = runProbe(gpu(), testTerrain(), pose, o);
+  EXPECT_GT(inst.medianMs, 0.0);
+  EXPECT_EQ(inst.draws, 1u);
+  EXPECT_EQ(inst.stats.tesInvocations, 0u);
+  EXPECT_EQ(inst.stats.clipInvocations, tess.stats.clipInvocations);
+  EXPECT_EQ(inst.stats.clipInvocations, uint64_t(grid * grid * level * level * 2));
+  Renderer r(gpu(), testTerrain(), {96, 64, grid});
+  r.setScheme(uniformInstancedScheme(), {{"level", level}, {"diagonal", 2}});
+  auto same = [&](int) { return pose; };
+  auto l = replayInMode(r, RenderMode::Shaded, 1, 1, 0, same);
+  ASSERT_EQ(l.size(), 1u);
+  EXPECT_EQ(inst.stats.clipInvocations, l[0].stats.clipInvocations);
+  EXPECT_EQ(inst.stats.vsInvocations, l[0].stats.vsInvocations);
+  EXPECT_EQ(inst.stats.fsInvocations, l[0].stats.fsInvocations);
+}
+
 INSTANTIATE_TEST_SUITE_P(Modes, Probe,
                          ::testing::Combine(::testing::Values(RenderMode::Shaded, RenderMode::Depth,
                                                               RenderMode::Frontend),

@@ -331,6 +331,12 @@ int main(int argc, char** argv) {
   probe->add_option("--levels", po.levels, "Uniform levels (default: the first scheme's level, else 1)")
       ->delimiter(',');
   probe->add_option("--modes", po.modes, "Timing modes (default: the config's \"timing\")")->delimiter(',');
+  probe
+      ->add_option("--draw-path", po.drawPath,
+                   "tessellation: the tessellated minimal loop and `uniform`; instanced: the same triangles "
+                   "pre-tessellated and instanced, against the renderer's instanced path")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tessellation", "instanced"}));
   probe->add_flag(
       "--vertex-height", po.vertexHeight,
       "Attribution variant: the minimal loop's vertex shader fetches control-point heights as lodbench's does");

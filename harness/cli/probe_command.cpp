@@ -10,6 +10,7 @@
 #include "config/config.h"
 #include "error.h"
 #include "render/probe.h"
+#include "render/uniform_instanced.h"
 #include "replay/timing_passes.h"
 #include "results/write.h"
 #include "schemes/registry.h"
@@ -61,6 +62,8 @@ int probeCommand(const ProbeCommandOptions& o) {
   CameraPath path = loadCameraPath(config.paths[0]);
   CameraPose pose = samplePose(path, config.fps, o.frame, terrain);
   bool split = o.split == "on" || (o.split == "auto" && probeNeedsSplit(ctx));
+  const bool instanced = o.drawPath == "instanced";
+  if (instanced && o.vertexHeight) throw InputError("--vertex-height applies to the tessellated loop only");
 
   json doc = {{"device", ctx.props.deviceName},
               {"driver", ctx.driverName + " " + ctx.driverInfo},
@@ -77,10 +80,15 @@ int probeCommand(const ProbeCommandOptions& o) {
     std::unique_ptr<Renderer> renderer;
     if (o.compare) renderer = std::make_unique<Renderer>(ctx, terrain, RenderSettings{w, h, config.grid});
     for (int level : levels) {
-      if (renderer) renderer->setScheme(*uniform, {{levelParam, level}});
+      // The instanced rows compare with the renderer's instanced path drawing the same triangles.
+      if (renderer && instanced)
+        renderer->setScheme(uniformInstancedScheme(), {{"level", level}, {"diagonal", 2}});
+      else if (renderer)
+        renderer->setScheme(*uniform, {{levelParam, level}});
       for (const std::string& m : modes) {
         RenderMode mode = timingRenderMode(m);
-        json row = {{"mode", m}, {"grid", config.grid}, {"level", level}, {"resolution", {w, h}}};
+        json row = {
+            {"mode", m}, {"grid", config.grid}, {"level", level}, {"resolution", {w, h}}, {"draw_path", o.drawPath}};
         PipelineStats ls;
         double lodbenchMs = renderer ? lodbenchMedian(*renderer, mode, pose, o.warmup, o.frames, ls) : 0;
         ProbeOptions po;
@@ -93,6 +101,7 @@ int probeCommand(const ProbeCommandOptions& o) {
         po.frames = o.frames;
         po.split = split;
         po.vertexHeight = o.vertexHeight;
+        po.instanced = instanced;
         ProbeResult p = runProbe(ctx, terrain, pose, po);
         row["minimal_ms"] = p.medianMs;
         row["minimal_draws"] = p.draws;
@@ -106,7 +115,8 @@ int probeCommand(const ProbeCommandOptions& o) {
           row["lodbench_draws"] = renderer->drawCount();
           row["ratio"] = lodbenchMs > 0 ? json(p.medianMs / lodbenchMs) : json(nullptr);
           // Same grid, level and camera: the tessellation work must be identical.
-          row["counters_equal"] = ls.tcsPatches == p.stats.tcsPatches && ls.tesInvocations == p.stats.tesInvocations;
+          row["counters_equal"] = ls.tcsPatches == p.stats.tcsPatches && ls.tesInvocations == p.stats.tesInvocations &&
+                                  (!instanced || ls.clipInvocations == p.stats.clipInvocations);
         } else {
           row["lodbench_ms"] = nullptr;
           row["ratio"] = nullptr;

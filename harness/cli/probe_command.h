@@ -16,9 +16,10 @@ struct ProbeCommandOptions {
   std::vector<std::string> modes;  // default: the config's "timing"
   int frames = 100, warmup = 20, frame = 0;
   bool compare = false;
-  bool vertexHeight = false;   // attribution variant of the minimal loop (ProbeOptions)
-  std::string split = "auto";  // auto (lavapipe only) | on | off
-  std::string out;             // "" = stdout only
+  bool vertexHeight = false;              // attribution variant of the minimal loop (ProbeOptions)
+  std::string split = "auto";             // auto (lavapipe only) | on | off
+  std::string drawPath = "tessellation";  // tessellation | instanced (ProbeOptions::instanced)
+  std::string out;                        // "" = stdout only
   bool append = false;
 };
 

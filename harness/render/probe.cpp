@@ -45,9 +45,14 @@ void createPipeline(ProbeObjects& o, const ProbeOptions& opt) {
   const std::string stem = opt.vertexHeight ? "probe_height" : "probe";
   TessPipelineDesc d;
   d.layout = o.bindings.pipelineLayout;
-  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, stem + ".vert.spv"},
-              {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, stem + ".tesc.spv"},
-              {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, stem + "_integer.tese.spv"}};
+  if (opt.instanced) {
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, "probe_instanced.vert.spv"}};
+    d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  } else {
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, stem + ".vert.spv"},
+                {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, stem + ".tesc.spv"},
+                {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, stem + "_integer.tese.spv"}};
+  }
   if (colour) d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, "probe.frag.spv"});
   d.controlPoints = 4;
   d.width = uint32_t(opt.width);
@@ -66,8 +71,26 @@ void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOpt
   o.height = createImage(ctx, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   uploadImage(ctx, o.height, terrain.h.data(), terrain.h.size() * sizeof(float));
-  auto verts = gridVertices(opt.grid, terrain.extent);
-  auto idx = patchIndices(opt.grid, Topology::Quad4);
+  std::vector<glm::vec2> verts;
+  std::vector<uint32_t> idx;
+  if (opt.instanced) {
+    // One patch pre-tessellated: (level+1)^2 lattice points, the tessellator's triangulation (the
+    // cell diagonal flips between the patch's quadrants, as render/uniform_instanced.h draws it).
+    const int l = int(opt.level);
+    for (int z = 0; z <= l; ++z)
+      for (int x = 0; x <= l; ++x) verts.emplace_back(float(x), float(z));
+    for (int z = 0; z < l; ++z)
+      for (int x = 0; x < l; ++x) {
+        uint32_t a = uint32_t(z * (l + 1) + x), b = a + 1, c = a + uint32_t(l) + 2, e = a + uint32_t(l) + 1;
+        if ((2 * x < l) == (2 * z < l))
+          idx.insert(idx.end(), {a, b, c, a, c, e});
+        else
+          idx.insert(idx.end(), {a, b, e, b, c, e});
+      }
+  } else {
+    verts = gridVertices(opt.grid, terrain.extent);
+    idx = patchIndices(opt.grid, Topology::Quad4);
+  }
   o.vertices =
       createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   o.indices = createBufferWithData(ctx, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
@@ -88,6 +111,11 @@ void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOpt
 
 }  // namespace
 
+// Indices of the instanced loop's footprint: two triangles a cell.
+static size_t idx6(float level) {
+  return size_t(level) * size_t(level) * 6;
+}
+
 bool probeNeedsSplit(const Context& ctx) {
   return ctx.driverName.find("llvmpipe") != std::string::npos;
 }
@@ -101,7 +129,9 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
   createPipeline(o, opt);
   GpuProfiler& profiler = o.profiler;
   CameraMatrices m = cameraMatrices(pose, float(opt.width) / float(opt.height), terrain.extent);
-  ProbePush push{m.proj * m.view, glm::vec4(terrain.extent, opt.level, 0, 0)};
+  ProbePush push{m.proj * m.view, glm::vec4(terrain.extent, opt.level, float(opt.grid), 0)};
+  if (opt.instanced && opt.level != float(int(opt.level)))
+    throw std::invalid_argument("probe: the instanced loop needs an integer level");
   const uint32_t patches = uint32_t(opt.grid) * uint32_t(opt.grid);
   uint32_t perDraw = patches;
   if (opt.split)
@@ -169,8 +199,13 @@ ProbeResult runProbe(Context& ctx, const Heightfield& terrain, const CameraPose&
     vkCmdBindVertexBuffers(cmd, 0, 1, o.vertices.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, o.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     uint32_t draws = 0;
-    for (uint32_t first = 0; first < patches; first += perDraw, ++draws)
-      vkCmdDrawIndexed(cmd, std::min(perDraw, patches - first) * 4, 1, first * 4, 0, 0);
+    if (opt.instanced) {
+      vkCmdDrawIndexed(cmd, uint32_t(idx6(opt.level)), patches, 0, 0, 0);
+      draws = 1;
+    } else {
+      for (uint32_t first = 0; first < patches; first += perDraw, ++draws)
+        vkCmdDrawIndexed(cmd, std::min(perDraw, patches - first) * 4, 1, first * 4, 0, 0);
+    }
     result.draws = draws;
     profiler.endStats(cmd, s);
     vkCmdEndRendering(cmd);

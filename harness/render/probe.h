@@ -1,8 +1,8 @@
 #pragma once
-// `lodbench probe`: the minimal tessellation loop. One VS/TCS/TES(/FS) pipeline with a
-// constant-colour fragment shader, the base grid, one uniform level, one camera: nothing else
-// (no uniform buffer, no LOD decision, no shading). Timed with the renderer's GpuProfiler, so its
-// GPU time is the floor lodbench's own frame is compared against.
+// `lodbench probe`: the minimal tessellation loop (or its instanced twin, ProbeOptions::instanced). One VS/TCS/TES(/FS)
+// pipeline with a constant-colour fragment shader, the base grid, one uniform level, one camera: nothing else (no
+// uniform buffer, no LOD decision, no shading). Timed with the renderer's GpuProfiler, so its GPU time is the floor
+// lodbench's own frame is compared against.
 #include <string>
 #include <vector>
 
@@ -26,6 +26,9 @@ struct ProbeOptions {
   // Attribution variant: the vertex shader fetches each control point's height and the control
   // points travel as vec3, as in lodbench's terrain.vert (its LOD decisions need the heights).
   bool vertexHeight = false;
+  // The instanced minimal loop: the same triangles pre-tessellated in one patch-sized footprint and
+  // drawn grid^2 times in one instanced draw (shaders/probe_instanced.vert); no tessellation stage.
+  bool instanced = false;
 };
 
 struct ProbeResult {
@@ -39,7 +42,7 @@ struct ProbeResult {
 // SPIR-V by tests/test_push_constants.cpp).
 struct ProbePush {
   glm::mat4 viewProj;
-  glm::vec4 terrain;  // extent, level
+  glm::vec4 terrain;  // extent, level, grid (instanced loop)
 };
 static_assert(sizeof(ProbePush) == 64 + 16 && sizeof(ProbePush) <= 128, "push constant mirror within Vulkan's minimum");
 

@@ -25,6 +25,10 @@ const std::vector<SchemeStyle>& schemeStyles() {
       {"planefit", "#882255", "wedge"},
       {"phong", "#AA4499", "triangle"},
       {"errbound", "#000000", "circle"},  // black: its sweep is the dashed reference front
+      // The instanced-grid schemes: the CDLOD pair in related teals, clipmaps in orange.
+      {"cdlod", "#009988", "square"},
+      {"cdlod-sse", "#005F56", "diamond"},
+      {"clipmap", "#EE7733", "cross"},
   };
   return table;
 }

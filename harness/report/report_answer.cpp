@@ -80,7 +80,9 @@ std::string deviceCaveat(const ReportRun& run) {
   std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
   if (lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
       lower.find("swiftshader") != std::string::npos)
-    s += " (a software rasterizer on the CPU: its costs do not predict a hardware GPU's)";
+    s += " (a software rasterizer on the CPU: its costs do not predict a hardware GPU's; tessellation is "
+         "emulated on the CPU there, so timings across draw paths, tessellated against instanced, are no "
+         "verdict on the tessellator)";
   return s +
          "; errors and triangle counts do not depend on the device. Thresholds are the medians of this run's "
          "cases, so they move with the sweep; the charts below show every case.";

@@ -35,12 +35,19 @@ constexpr Column kCaseColumns[] = {
     {"GPU ms p95", "gpu_ms", "p95"},
     {"GPU ms depth", "gpu_ms_depth", "median", true},        // timing modes
     {"GPU ms frontend", "gpu_ms_frontend", "median", true},  // LOD decision + tessellator only
+    // Draw paths whose LOD runs apart from drawing (instanced grid): GPU LOD and draw time, and
+    // the CPU selection with its upload, which gpu_ms leaves out.
+    {"LOD GPU ms", "lod_ms", "median", true},
+    {"draw GPU ms", "draw_ms", "median", true},
+    {"LOD CPU ms", "lod_cpu_ms", "median", true},
     {"CPU ms median", "cpu_ms", "median"},
     {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs recorded before timing modes lack it
     {"calibration drift", "calibration", "drift", true},   // flagged when |drift| > 0.02
     {"FPS median", "fps_median", ""},
     {"triangles median", "triangles", "median"},
     {"patches median", "patches", "median"},
+    {"instances median", "instances", "median", true},
+    {"degenerate triangles", "hist_degenerate_total", "", true},
     {"error mean px", "err_mean_px", "mean"},
     {"error p95 px", "err_p95_px", "mean"},
     {"PSNR dB", "img_psnr_db", "mean"},

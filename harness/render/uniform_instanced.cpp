@@ -1,19 +1,19 @@
-#include "uniform_vs_scheme.h"
+#include "render/uniform_instanced.h"
 
 #include <cmath>
 
 #include "shaders/shared.h"
 #include "shaders/uniform_params.h"
 
-namespace lbtest {
+namespace lb {
 namespace {
 
-class UniformVsLod : public lb::InstancedLod {
+class UniformInstancedLod : public InstancedLod {
  public:
-  UniformVsLod(int level, int diagonal, int split) {
+  UniformInstancedLod(int level, int diagonal, int split) {
     // Footprint rows [r0, r1) of the level x level cells; all of them together are one patch.
     for (int s = 0; s < split; ++s) {
-      lb::Footprint f;
+      Footprint f;
       f.name = "rows" + std::to_string(s);
       const int r0 = level * s / split, r1 = level * (s + 1) / split;
       for (int z = r0; z <= r1; ++z)
@@ -33,8 +33,8 @@ class UniformVsLod : public lb::InstancedLod {
       if (!f.indices.empty()) footprints_.push_back(std::move(f));
     }
   }
-  const std::vector<lb::Footprint>& footprints() const override { return footprints_; }
-  void select(const lb::FrameUniforms& frame, lb::Selection& out) const override {
+  const std::vector<Footprint>& footprints() const override { return footprints_; }
+  void select(const FrameUniforms& frame, Selection& out) const override {
     const int grid = int(frame.terrain.y);
     out.instances.assign(footprints_.size(), {});
     out.counters.clear();
@@ -44,35 +44,35 @@ class UniformVsLod : public lb::InstancedLod {
   }
 
  private:
-  std::vector<lb::Footprint> footprints_;
+  std::vector<Footprint> footprints_;
 };
 
-class UniformVs : public lb::Scheme {
+class UniformInstanced : public Scheme {
  public:
-  const lb::SchemeInfo& info() const override {
-    static const lb::SchemeInfo kInfo = {
-        .name = "test-uniform-vs",
-        .description = "TEST ONLY: uniform's patches as instanced grids",
-        .seed = "tests/uniform_vs_scheme.h",
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        .name = "uniform-instanced",
+        .description = "uniform's patches as instanced grids (probe and path tests; not registered)",
+        .seed = "harness/render/uniform_instanced.h",
         .params = {{"level", LB_UNIFORM_LEVEL, 8, 1, 64, true, "cells per patch side"},
                    {"diagonal", 1, 0, 0, 3, true, "cell diagonal"},
                    {"split", 2, 1, 1, 64, true, "footprints per patch"}},
         .mainParam = "level",
-        .path = lb::DrawPath::InstancedGrid,
-        .vert = "test_uniform_vs",
+        .path = DrawPath::InstancedGrid,
+        .vert = "uniform_instanced",
     };
     return kInfo;
   }
-  std::unique_ptr<lb::InstancedLod> instancedLod(const lb::Heightfield&, const lb::ParamValues& v) const override {
-    return std::make_unique<UniformVsLod>(int(v.at("level")), int(v.at("diagonal")), int(v.at("split")));
+  std::unique_ptr<InstancedLod> instancedLod(const Heightfield&, const ParamValues& v) const override {
+    return std::make_unique<UniformInstancedLod>(int(v.at("level")), int(v.at("diagonal")), int(v.at("split")));
   }
 };
 
 }  // namespace
 
-const lb::Scheme& uniformVsScheme() {
-  static const UniformVs scheme;
+const Scheme& uniformInstancedScheme() {
+  static const UniformInstanced scheme;
   return scheme;
 }
 
-}  // namespace lbtest
+}  // namespace lb

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// TEST ONLY (tests/uniform_vs_scheme.h): a tessellated `uniform` patch's vertices, placed by
-// instance: patch (i, j) of the base grid, `level` cells a side.
+// `uniform`'s workload as instanced grids (harness/render/uniform_instanced.h): a tessellated
+// patch's vertices, placed by instance: patch (i, j) of the base grid, `level` cells a side.
 #define LB_INSTANCED_VERTEX
 #include "terrain_vertex.glsl"
 #include "uniform_params.h"

@@ -1,0 +1,22 @@
+// Scheme parameter slots of `cdlod` and `cdlod-sse` in FrameUniforms::params, shared by
+// schemes/cdlod.cpp and shaders/cdlod.vert. Both schemes draw through cdlod.vert, so one header
+// names the slots of both; only LB_CDLOD_CELLS_PER_TEXEL reaches the shader (the rest shape the CPU
+// selection and the morph constants it writes into each instance record).
+#ifndef LB_CDLOD_PARAMS_H
+#define LB_CDLOD_PARAMS_H
+#define LB_CDLOD_TRI_SIZE 0         // cdlod: target cell width in pixels at the far end of each range
+#define LB_CDLOD_MORPH 1            // fraction of each range (cdlod) or of the bound (cdlod-sse) that morphs
+#define LB_CDLOD_MORPH_ON 2         // 0 = morph factor forced to 0 (negative control)
+#define LB_CDLOD_NODE_CELLS 3       // cells per node side at the finest level; 0 = auto
+#define LB_CDLOD_CELLS_PER_TEXEL 4  // finest lattice cells per heightfield sample spacing
+#define LB_CDLOD_MAX_ERROR_PX 5     // cdlod-sse: screen-space error bound per node in pixels
+
+// Instance record (render/instanced.h InstanceRecord), written by schemes/cdlod.cpp:
+//   a = (x0, z0, level + LB_CDLOD_SIDE_SHIFT * side, kNode)
+//       x0, z0: the quadrant's corner in finest lattice cells; level: the node's level (cell =
+//       2^level lattice cells); side: footprint cells a side (node_cells / 2).
+//       kNode < 0: morph by distance with b = (morph start, morph end, 0, 0) in world units;
+//       kNode >= 0: explicit morph factors, kNode inside and b = (west, south, east, north) on the
+//       quadrant's edges (x = 0, z = 0, x = side, z = side).
+#define LB_CDLOD_SIDE_SHIFT 32.0
+#endif
