@@ -16,12 +16,14 @@ const Scheme& errBoundScheme();
 const Scheme& sphereEdgeScheme();
 const Scheme& cdlodScheme();
 const Scheme& cdlodSseScheme();
+const Scheme& clipmapScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
       &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
       &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(), &cdlodScheme(),     &cdlodSseScheme(),
+      &clipmapScheme(),
   };
   return schemes;
 }
