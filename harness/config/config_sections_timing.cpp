@@ -70,8 +70,8 @@ void parseMatchSection(const ConfigReader& r, const json& j, Config& c) {
     r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations"});
     if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
     c.match.metric = r.string(m["metric"], "/match/metric");
-    if (c.match.metric != "triangles" && c.match.metric != "err_mean_px")
-      r.fail("/match/metric", "'" + printable(c.match.metric) + "' is not one of triangles, err_mean_px");
+    if (c.match.metric != "triangles" && c.match.metric != "err_mean_px" && c.match.metric != "err_p95_px")
+      r.fail("/match/metric", "'" + printable(c.match.metric) + "' is not one of triangles, err_mean_px, err_p95_px");
     c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
     if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
     if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);

@@ -6,8 +6,8 @@
 namespace lb {
 
 struct MatchSpec {
-  std::string metric;   // "" (off) | "triangles" | "err_mean_px"
-  double value = 0;     // target: mean triangles per frame, or mean error in pixels
+  std::string metric;   // "" (off) | "triangles" | "err_mean_px" | "err_p95_px"
+  double value = 0;     // target: mean over the frames of triangles, mean error or p95 error (pixels)
   int frames = 8;       // evaluation frames spread evenly over the path
   int iterations = 12;  // bisection steps
   bool on() const { return !metric.empty(); }

@@ -5,6 +5,7 @@
 #include "camera/camera_path.h"
 #include "config/config.h"
 #include "render/renderer.h"
+#include "stats.h"
 
 namespace lb {
 
@@ -34,6 +35,11 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
         r.submitFrame(f, p, p);
         r.finish();
         sum += double(r.takeCompleted().back().stats.clipInvocations);
+      } else if (spec.metric == "err_p95_px") {
+        std::vector<double> e;
+        for (float v : r.renderErrorMap(p, p))
+          if (v >= 0) e.push_back(v);
+        sum += e.empty() ? 0 : summarize(e).p95;
       } else {
         auto err = r.renderErrorMap(p, p);
         double s = 0;
