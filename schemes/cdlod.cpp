@@ -8,7 +8,7 @@
 // Massive Terrains using Chunked Level of Detail Control", SIGGRAPH 2002 course): refine a node
 // while its precomputed geometric error, projected at its nearest view depth, exceeds a pixel
 // bound; then balance the tree 2:1 and morph by how far the parent's error is over the bound.
-// Design note: /work/shared/research/drawpaths.md 3.1, 3.2; beyond-tessellation.md 1.1, 1.4.
+// Design note: docs/draw-paths.md.
 //
 // Nodes. A node at level l covers n * 2^l finest lattice cells a side (n = node_cells; lattice:
 // render/instanced.h), drawn as its 4 quadrants, each one instance of an (n/2) x (n/2)-cell
