@@ -13,8 +13,10 @@ export LODBENCH_SHADER_DIR=$build/shaders
 [[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
 mkdir -p "$out"
 if [[ $part == limit ]]; then
-  "$build/lodbench_bench" --benchmark_filter='BM_Cdlod|BM_Clipmap' --benchmark_repetitions=3 \
-    --benchmark_out="$out/bench-select.json" --benchmark_out_format=json | tail -12
+  # Google Benchmark is a shared library on Debian: carried in BUILD_DIR/lib when the machine lacks it.
+  LD_LIBRARY_PATH=$build/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH} "$build/lodbench_bench" \
+    --benchmark_filter='BM_Cdlod|BM_Clipmap' --benchmark_repetitions=3 --benchmark_out="$out/bench-select.json" \
+    --benchmark_out_format=json | tail -12 || echo "lodbench_bench failed: no CPU selection figures"
   nvidia-smi --query-gpu=name,driver_version,clocks.sm --format=csv | tee "$out/limit-gpu.txt"
   limit=$out/limit-paths.json
   rm -f "$limit"

@@ -35,6 +35,9 @@ static_assert(sizeof(InstanceRecord) == 32, "std430 mirror of shaders/terrain_ve
 struct Selection {
   std::vector<std::vector<InstanceRecord>> instances;
   std::vector<double> counters;
+  // Set by the renderer before select(): only measured frames read the counters, so a scheme may
+  // skip a diagnostic that costs more than the selection itself on timed frames (leaving NaN).
+  bool countersWanted = true;
   size_t instanceCount() const {
     size_t n = 0;
     for (const auto& v : instances) n += v.size();

@@ -72,6 +72,7 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
 
 void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u) {
   const double start = nowMs();
+  selection_.countersWanted = slot.readback || captureMeshNext_;
   lod_->select(u, selection_);
   if (selection_.instances.size() != footprintRanges_.size())
     throw std::logic_error("scheme '" + scheme_->info().name + "' selected instances for " +

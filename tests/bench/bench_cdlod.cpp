@@ -58,12 +58,15 @@ std::vector<FrameUniforms> flight(const Heightfield& hf, const Scheme& scheme, c
   return out;
 }
 
-void benchSelect(benchmark::State& state, const Scheme& scheme) {
+// A timed frame's selection (the renderer asks for the scheme's counters on measured frames only);
+// `counters` true adds them, as a measured frame pays.
+void benchSelect(benchmark::State& state, const Scheme& scheme, bool counters = false) {
   static const Heightfield hf = benchTerrain(4097);
   const ParamValues v = resolveParams(scheme.info(), {});
   auto lod = scheme.instancedLod(hf, v);
   const std::vector<FrameUniforms> frames = flight(hf, scheme, v, 64);
   Selection sel;
+  sel.countersWanted = counters;
   size_t f = 0, instances = 0;
   for (auto _ : state) {
     lod->select(frames[f], sel);
@@ -93,6 +96,8 @@ void benchSseLoad(benchmark::State& state, int size) {
 
 const bool kRegistered = [] {
   benchmark::RegisterBenchmark("BM_CdlodSelect/4097/1080p", [](benchmark::State& s) { benchSelect(s, cdlodScheme()); });
+  benchmark::RegisterBenchmark("BM_CdlodSelectMeasured/4097/1080p",
+                               [](benchmark::State& s) { benchSelect(s, cdlodScheme(), true); });
   benchmark::RegisterBenchmark("BM_CdlodSseSelect/4097/1080p",
                                [](benchmark::State& s) { benchSelect(s, cdlodSseScheme()); });
   benchmark::RegisterBenchmark("BM_CdlodSseLoad/1025", [](benchmark::State& s) {
