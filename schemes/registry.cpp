@@ -20,10 +20,9 @@ const Scheme& clipmapScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
-      &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
-      &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
-      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(), &cdlodScheme(),     &cdlodSseScheme(),
-      &clipmapScheme(),
+      &uniformScheme(),    &sphereScheme(),   &interlockScheme(), &sphereRingsScheme(), &densityScheme(),
+      &phongScheme(),      &distanceScheme(), &referenceScheme(), &planeFitScheme(),    &errBoundScheme(),
+      &sphereEdgeScheme(), &cdlodScheme(),    &cdlodSseScheme(),  &clipmapScheme(),
   };
   return schemes;
 }

@@ -62,6 +62,9 @@ long layoutCrackEdges(const PatchGeometry& geometry, const std::vector<float>& l
 
 long analyticCracks(const Scheme& scheme, const ParamValues& params, const Heightfield& terrain, int grid,
                     const std::vector<float>& levels) {
+  if (scheme.info().path != DrawPath::Tessellation)
+    throw std::logic_error("analyticCracks: '" + scheme.info().name +
+                           "' draws no patches; its cracks come from the drawn mesh (metrics/mesh_cracks.h)");
   PatchGeometry layout = scheme.patchLayout(terrain, params, grid);
   return layout.indices.empty() ? gridCrackEdges(scheme.info().topology, grid, levels)
                                 : layoutCrackEdges(layout, levels);

@@ -199,14 +199,17 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
            "popping: mean (max)", "popping: p99 (max)", "saturated frames (max)", "surplus: mean (cases' range)"},
           {},
           {false, false, false, true, true, true, true, true, true}};
-  // One column per scheme counter (SchemeInfo::counters): the sum of its case key over the cases.
+  // One column per scheme counter (SchemeInfo::counters) of the schemes this run has: the sum of
+  // its case key over the cases.
   std::vector<std::string> counterKeys;
-  for (const Scheme* s : allSchemes())
+  for (const Scheme* s : allSchemes()) {
+    if (std::find(run.schemes.begin(), run.schemes.end(), s->info().name) == run.schemes.end()) continue;
     for (const SchemeCounter& c : s->info().counters) {
       t.header.push_back(s->info().name + ": " + c.label);
       t.numeric.push_back(true);
       counterKeys.push_back(c.caseKey);
     }
+  }
   t.header.push_back("worst frames");
   t.numeric.push_back(false);
   for (auto& scheme : run.schemes)
