@@ -13,6 +13,8 @@
 #define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
 #define LB_BINDING_INSTANCES 9     // instanced-grid path: InstanceRecord per instance (render/instanced.h)
 #define LB_BINDING_MESH 10         // measurement pass: captured triangles of the instanced path (analytic cracks)
+#define LB_BINDING_LOD_STATE 11    // GPU-indirect path: the LOD state the compute passes keep across frames
+#define LB_BINDING_LOD_ARGS 12     // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8      // floats per patch in the capture buffer

@@ -57,6 +57,22 @@ class InstancedLod {
   virtual void select(const FrameUniforms& frame, Selection& out) const = 0;
 };
 
+// The GPU-indirect path: LOD passes in compute, on a state buffer that persists across frames,
+// write the instance records (LB_BINDING_INSTANCES) and the indirect draw arguments
+// (LB_BINDING_LOD_ARGS: VkDrawIndexedIndirectCommand, five uints); the renderer then draws the one
+// footprint with vkCmdDrawIndexedIndirect. Stateful schemes (a subdivision tree updated every
+// frame) are measured through the renderer's state hooks: reset, snapshot, restore.
+struct GpuLodPass {
+  std::string shader;   // shaders/<shader>.comp, the renderer's descriptor set and push constants
+  uint32_t groups = 1;  // workgroups dispatched (x)
+};
+struct GpuLod {
+  Footprint footprint;                 // the mesh every instance draws (its indices: the args' indexCount)
+  std::vector<uint32_t> initialState;  // LB_BINDING_LOD_STATE after a reset
+  uint32_t maxInstances = 0;           // room for the records the passes write
+  std::vector<GpuLodPass> passes;      // every frame, in order, with barriers between them
+};
+
 // Finest lattice cell of a terrain of width x height samples at `cellsPerTexel` cells per sample
 // spacing, in world units along x and z.
 glm::dvec2 latticeCell(float extent, int width, int height, double cellsPerTexel);

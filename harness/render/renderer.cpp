@@ -68,6 +68,21 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   scheme_->update(u, params_);
   std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
   if (lod_) selectInstances(slots_[size_t(slotIndex)], slotIndex, u);
+  // The GPU decides how many instances: room for as many as the passes may write.
+  if (gpuIndirect_ && captureMeshNext_)
+    prepareMeshCapture(uint64_t(gpuLod_.maxInstances) * (footprintRanges_[0].indexCount / 3));
+}
+
+void Renderer::prepareMeshCapture(uint64_t triangles) {
+  if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
+    meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
+    if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
+    mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    writeInstanceDescriptors();
+  }
+  auto* head = static_cast<uint32_t*>(mesh_.mapped);
+  head[0] = 0;
+  head[1] = meshCapacity_;
 }
 
 void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u) {
@@ -102,17 +117,7 @@ void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u
     next += uint32_t(records.size());
     triangles += uint64_t(records.size()) * (footprintRanges_[f].indexCount / 3);
   }
-  if (captureMeshNext_) {
-    if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
-      meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
-      if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
-      mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-      writeInstanceDescriptors();
-    }
-    auto* head = static_cast<uint32_t*>(mesh_.mapped);
-    head[0] = 0;
-    head[1] = meshCapacity_;
-  }
+  if (captureMeshNext_) prepareMeshCapture(triangles);
   slot.lodCpuMs = nowMs() - start;
 }
 
@@ -170,15 +175,16 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   ri.pColorAttachments = colour ? &ca : nullptr;
   ri.pDepthAttachment = depth ? &da : nullptr;
 
+  uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
   profiler_.timestampTop(cmd, slotIndex);
-  // The instanced path's LOD runs on the CPU before this frame (FrameResult::lodCpuMs): its LOD
-  // timestamp follows the opening one at once, the place where GPU LOD passes will run.
-  const bool instanced = lod_ != nullptr;
+  // The LOD timestamp closes the LOD work: the GPU-indirect path's compute passes, or nothing on the
+  // instanced path, whose selection ran on the CPU before this frame (FrameResult::lodCpuMs).
+  const bool instanced = lod_ != nullptr || gpuIndirect_;
+  if (gpuIndirect_) recordLodPasses(cmd, dynOffset);
   if (instanced) profiler_.timestampLod(cmd, slotIndex);
   vkCmdBeginRendering(cmd, &ri);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
   // planted slowdown below draw after the query ends.
-  uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
   VkDeviceSize zero = 0;
   // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices or kMaxIndicesPerDraw indices.
   auto drawAll = [&](VkPipeline p) {
@@ -187,6 +193,10 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
                             &dynOffset);
     vkCmdBindVertexBuffers(cmd, 0, 1, vertices_.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+    if (gpuIndirect_) {
+      vkCmdDrawIndexedIndirect(cmd, lodArgs_.buffer, 0, 1, 5 * sizeof(uint32_t));
+      return;
+    }
     if (instanced) {
       drawInstances(cmd, slot);
       return;
@@ -205,7 +215,11 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   profiler_.beginStats(cmd, slotIndex);
   drawAll(pipe);
   profiler_.endStats(cmd, slotIndex);
-  if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback && instanced) {
+  // The planted slowdown (tests of the regression gate) covers the tessellation and instanced paths;
+  // the GPU-indirect path's instance count is the GPU's, so it has none.
+  const bool planted =
+      settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback && !gpuIndirect_;
+  if (planted && instanced) {
     // Planted regression on the instanced path: the first fraction of every footprint's instances again.
     const double s = std::min(1.0, settings_.testSlowdown);
     for (size_t f = 0; f < footprintRanges_.size(); ++f) {
@@ -214,7 +228,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
         vkCmdDrawIndexed(cmd, footprintRanges_[f].indexCount, n, footprintRanges_[f].firstIndex,
                          footprintRanges_[f].vertexOffset, slot.instFirst[f]);
     }
-  } else if (settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback) {
+  } else if (planted) {
     // Planted regression (tests only), after the statistics query and before the closing timestamp:
     // the first fraction s of each eighth of the patches is drawn again (the share spreads over the
     // grid), split like the draws above, so GPU time grows by about s while the counters stay exact.
@@ -234,6 +248,14 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   }
   vkCmdEndRendering(cmd);
   profiler_.timestampBottom(cmd, slotIndex);
+  if (gpuIndirect_) {  // the arguments the passes wrote, for FrameResult::instances
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferCopy region{0, VkDeviceSize(slotIndex) * 5 * sizeof(uint32_t), 5 * sizeof(uint32_t)};
+    vkCmdCopyBuffer(cmd, lodArgs_.buffer, lodArgsReadback_.buffer, 1, &region);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
+  }
   if (slot.readback) {
     imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -295,7 +317,10 @@ void Renderer::collect(int si) {
   r.stats = sample.stats;
   r.lodMs = sample.lodMs;
   r.drawMs = sample.drawMs;
-  if (lod_) {
+  if (gpuIndirect_) {
+    r.instances = static_cast<const uint32_t*>(lodArgsReadback_.mapped)[size_t(si) * 5 + 1];
+    r.draws = 1;
+  } else if (lod_) {
     r.lodCpuMs = slot.lodCpuMs;
     for (uint32_t n : slot.instCount) {
       r.instances += n;
@@ -346,12 +371,12 @@ uint64_t TriangleHistogram::total() const {
 TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
   finish();
   std::memset(histogram_.mapped, 0, size_t(histogram_.size));
-  captureMeshNext_ = lod_ != nullptr;
+  captureMeshNext_ = lod_ != nullptr || gpuIndirect_;
   submitFrame(-1, view, lod, RenderMode::Histogram);
   finish();
   captureMeshNext_ = false;
   capturedMesh_.clear();
-  if (lod_) {
+  if (lod_ || gpuIndirect_) {
     const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
     if (head[0] > head[1])
       throw std::logic_error("mesh capture: " + std::to_string(head[0]) + " triangles drawn, room for " +

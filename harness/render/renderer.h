@@ -145,7 +145,14 @@ class Renderer {
   DrawPath path() const { return scheme_ ? scheme_->info().path : DrawPath::Tessellation; }
   // Instanced path: the selection of the last frame submitted (its counters feed countFrame).
   const Selection& lastSelection() const { return selection_; }
-  // Instanced path: every triangle's three world vertices drawn by the last measureHistogram
+  // GPU-indirect path: the LOD state across frames (each waits for frames in flight first). Reset
+  // writes the scheme's initial state; snapshot copies the state aside, restore copies it back, so
+  // a stateful scheme's repetitions and replays can start from the same state.
+  void resetLodState();
+  void snapshotLodState();
+  void restoreLodState();
+  std::vector<uint32_t> readLodState();
+  // Instanced and GPU-indirect paths: every triangle's three world vertices drawn by the last measureHistogram
   // (captured by the histogram's geometry shader); empty on the tessellation path.
   const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
 
@@ -175,6 +182,11 @@ class Renderer {
   void createFootprints();
   void writeInstanceDescriptors();
   void drawInstances(VkCommandBuffer cmd, const Slot& slot);
+  void minimalPatchBuffers();
+  void prepareMeshCapture(uint64_t triangles);
+  void createGpuLod();
+  void recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset);
+  void copyLodState(const Buffer& from, const Buffer& to);
 
   // Every Vulkan object below is owned by a vk::Unique (directly or through Buffer, Image and
   // Bindings): when the constructor throws half-way, the members built so far release theirs.
@@ -216,6 +228,12 @@ class Renderer {
   uint32_t meshCapacity_ = 0;  // triangles
   bool captureMeshNext_ = false;
   std::vector<glm::vec3> capturedMesh_;
+  // GPU-indirect path (render/instanced.h GpuLod): its passes' pipelines, the state and its
+  // snapshot, the draw arguments the passes write, and a per-slot copy of them for the host.
+  bool gpuIndirect_ = false;
+  GpuLod gpuLod_;
+  std::vector<vk::Unique<VkPipeline>> lodPipelines_;
+  Buffer lodState_, lodSnapshot_, lodArgs_, lodArgsReadback_;
 };
 
 }  // namespace lb

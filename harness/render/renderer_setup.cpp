@@ -90,13 +90,22 @@ void Renderer::createTargets() {
 }
 
 void Renderer::createGrid() {
-  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &instances_, &mesh_}) *b = {};
+  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &instances_, &mesh_, &lodState_,
+                    &lodSnapshot_, &lodArgs_, &lodArgsReadback_})
+    *b = {};
   lod_.reset();
   footprintRanges_.clear();
   selection_ = {};
   instanceCapacity_ = meshCapacity_ = 0;
+  gpuIndirect_ = false;
+  gpuLod_ = {};
+  lodPipelines_.clear();
   if (scheme_->info().path == DrawPath::InstancedGrid) {
     createFootprints();
+    return;
+  }
+  if (scheme_->info().path == DrawPath::GpuIndirect) {
+    createGpuLod();
     return;
   }
   Topology topo = scheme_->info().topology;
@@ -152,6 +161,10 @@ void Renderer::createFootprints() {
   auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
   vertices_ = createBufferWithData(ctx_, vertices.data(), bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   indices_ = createBufferWithData(ctx_, indices.data(), bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  minimalPatchBuffers();
+}
+
+void Renderer::minimalPatchBuffers() {
   // No patches: the bindings the tessellation path reads stay valid and unused.
   const float zeros[8] = {};
   bounds_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -175,7 +188,9 @@ void Renderer::createDescriptors() {
                       {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
                       {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                       {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
+                      {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
                      all, sizeof(DrawPush));
 }
 
@@ -251,7 +266,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
 }
 
 void Renderer::writeInstanceDescriptors() {
-  // Both bindings exist on every path (one pipeline layout); minimal buffers until a frame needs more.
+  // These bindings exist on every path (one pipeline layout); minimal buffers until a scheme or a frame needs more.
   if (!instances_.buffer) {
     instanceCapacity_ = 0;
     instances_ = createBuffer(ctx_, sizeof(InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
@@ -261,16 +276,24 @@ void Renderer::writeInstanceDescriptors() {
     mesh_ = createBuffer(ctx_, 16 + 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     std::memset(mesh_.mapped, 0, size_t(mesh_.size));
   }
-  VkDescriptorBufferInfo ib{instances_.buffer, 0, VK_WHOLE_SIZE}, mb{mesh_.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  w[0].dstSet = w[1].dstSet = bindings_.set;
-  w[0].dstBinding = LB_BINDING_INSTANCES;
-  w[1].dstBinding = LB_BINDING_MESH;
-  w[0].descriptorCount = w[1].descriptorCount = 1;
-  w[0].descriptorType = w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  w[0].pBufferInfo = &ib;
-  w[1].pBufferInfo = &mb;
-  vkUpdateDescriptorSets(ctx_.device, 2, w, 0, nullptr);
+  const uint32_t zeros[8] = {};
+  for (Buffer* b : {&lodState_, &lodArgs_})
+    if (!b->buffer) *b = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const VkDescriptorBufferInfo infos[4] = {{instances_.buffer, 0, VK_WHOLE_SIZE},
+                                           {mesh_.buffer, 0, VK_WHOLE_SIZE},
+                                           {lodState_.buffer, 0, VK_WHOLE_SIZE},
+                                           {lodArgs_.buffer, 0, VK_WHOLE_SIZE}};
+  const uint32_t targets[4] = {LB_BINDING_INSTANCES, LB_BINDING_MESH, LB_BINDING_LOD_STATE, LB_BINDING_LOD_ARGS};
+  VkWriteDescriptorSet w[4];
+  for (int i = 0; i < 4; ++i) {
+    w[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w[i].dstSet = bindings_.set;
+    w[i].dstBinding = targets[i];
+    w[i].descriptorCount = 1;
+    w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(ctx_.device, 4, w, 0, nullptr);
 }
 
 VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
@@ -295,7 +318,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
   // The instanced path's histogram pass also captures the drawn mesh (analytic cracks).
-  const bool instanced = info.path == DrawPath::InstancedGrid;
+  const bool instanced = info.path != DrawPath::Tessellation;
   VkBool32 meshValue = instanced;
   VkSpecializationMapEntry meshEntry{2, 0, sizeof(VkBool32)};
   VkSpecializationInfo meshSpec{1, &meshEntry, sizeof(VkBool32), &meshValue};

@@ -17,8 +17,9 @@ struct Heightfield;
 enum class Topology { Quad4, Quad12, Tri3 };
 // How a scheme's triangles reach the rasterizer (docs/draw-paths.md). Tessellation: patches of the
 // base grid through the scheme's control shader. InstancedGrid: CPU-selected instances of a few
-// index meshes (render/instanced.h) through the scheme's vertex shader.
-enum class DrawPath { Tessellation, InstancedGrid };
+// index meshes (render/instanced.h) through the scheme's vertex shader. GpuIndirect: instances and
+// draw arguments written by the scheme's compute passes on the GPU (GpuLod), drawn indirectly.
+enum class DrawPath { Tessellation, InstancedGrid, GpuIndirect };
 enum class Partitioning { Integer, FractionalEven, FractionalOdd };
 
 struct ParamSpec {
@@ -55,7 +56,7 @@ struct SchemeInfo {
   std::string mainParam;
   MainParamRole mainParamRole = MainParamRole::Knob;
   DrawPath path = DrawPath::Tessellation;
-  std::string vert;  // InstancedGrid: shaders/<vert>.vert (includes terrain_vertex.glsl)
+  std::string vert;  // InstancedGrid, GpuIndirect: shaders/<vert>.vert (includes terrain_vertex.glsl)
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
   std::string tesc;                   // Tessellation: shader stem, shaders/<tesc>.tesc
@@ -140,6 +141,8 @@ class Scheme {
   // DrawPath::InstancedGrid: the per-terrain LOD state (footprints, trees, tables) that selects
   // each frame's instances on the CPU. Built once per setScheme.
   virtual std::unique_ptr<InstancedLod> instancedLod(const Heightfield&, const ParamValues&) const { return nullptr; }
+  // DrawPath::GpuIndirect: the footprint, the initial LOD state and the compute passes.
+  virtual GpuLod gpuLod(const Heightfield&, const ParamValues&) const { return {}; }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.

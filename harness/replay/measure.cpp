@@ -43,8 +43,9 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   std::vector<float> levels = r.capturedLevels();
   // The instanced path decides its LOD on the CPU: the scheme's own counts of this pose are those of
   // the selection just drawn, taken before another pass selects again.
-  const bool instanced = r.path() == DrawPath::InstancedGrid;
-  const std::vector<double> selectionCounts = instanced ? r.lastSelection().counters : std::vector<double>{};
+  const bool instanced = r.path() != DrawPath::Tessellation;  // instanced grid or GPU-indirect: no patches
+  const std::vector<double> selectionCounts =
+      r.path() == DrawPath::InstancedGrid ? r.lastSelection().counters : std::vector<double>{};
 
   bool histogram = spec.on("histogram");
   if (histogram) try {
@@ -131,7 +132,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   set("saturated_patches", instanced ? kNan : saturatedPatches(levels, scheme.partitioning(params)));
   const std::vector<SchemeCounter>& counters = scheme.info().counters;
   if (!counters.empty()) {
-    std::vector<double> counts = instanced ? selectionCounts : scheme.countFrame(levels);
+    std::vector<double> counts = r.path() == DrawPath::InstancedGrid ? selectionCounts : scheme.countFrame(levels);
     for (size_t i = 0; i < counters.size(); ++i) set(counters[i].frameKey, i < counts.size() ? counts[i] : kNan);
   }
   return m;

@@ -107,7 +107,7 @@ json caseSummary(const CaseResult& r) {
     if (f.lodMs >= 0) lod.push_back(f.lodMs);
     if (f.drawMs >= 0) draw.push_back(f.drawMs);
     if (f.lodCpuMs >= 0) lodCpu.push_back(f.lodCpuMs);
-    if (f.lodCpuMs >= 0) instances.push_back(double(f.instances));
+    if (f.lodMs >= 0) instances.push_back(double(f.instances));
     gpu.push_back(f.gpuMs);
     cpu.push_back(f.cpuMs);
     harness.push_back(f.harnessMs);
@@ -236,12 +236,13 @@ json caseJson(const Case& c, const CaseResult& r) {
                 {"clip_primitives", f.stats.clipPrimitives},
                 {"fragment_invocations", f.stats.fsInvocations},
                 {"draws", f.draws}};
-    // The instanced path's split of the frame (FrameResult); absent on the tessellation path.
-    if (f.lodCpuMs >= 0) {
+    // The instanced and GPU-indirect paths' split of the frame (FrameResult); absent on the
+    // tessellation path. lod_cpu_ms is null where the LOD runs on the GPU.
+    if (f.lodMs >= 0) {
       rec["instances"] = f.instances;
       rec["lod_ms"] = f.lodMs;
       rec["draw_ms"] = f.drawMs;
-      rec["lod_cpu_ms"] = f.lodCpuMs;
+      rec["lod_cpu_ms"] = f.lodCpuMs >= 0 ? json(f.lodCpuMs) : json(nullptr);
     }
     for (auto& [mode, mf] : r.modeFrames)
       if (fi < mf.size()) rec["gpu_ms_" + mode] = mf[fi].gpuMs;

@@ -1,0 +1,121 @@
+// The renderer's GPU-indirect path (render/instanced.h GpuLod): the scheme's compute passes write
+// instances and indirect draw arguments every frame on a state buffer that persists across frames;
+// the hooks reset, snapshot and restore that state.
+#include <cstring>
+#include <stdexcept>
+
+#include "render/renderer.h"
+#include "shaders/shared.h"
+#include "vk/context.h"
+#include "vk/resources.h"
+#include "vk/vk_check.h"
+
+namespace lb {
+
+namespace {
+constexpr VkDeviceSize kArgsBytes = 5 * sizeof(uint32_t);  // VkDrawIndexedIndirectCommand
+}
+
+void Renderer::createGpuLod() {
+  const std::string& name = scheme_->info().name;
+  gpuLod_ = scheme_->gpuLod(terrain_, params_);
+  const Footprint& f = gpuLod_.footprint;
+  if (f.indices.empty() || f.indices.size() % 3 != 0 || gpuLod_.maxInstances == 0 || gpuLod_.passes.empty() ||
+      gpuLod_.initialState.empty())
+    throw std::logic_error("scheme '" + name +
+                           "' is GPU-indirect but supplies no footprint, state, capacity or passes");
+  for (uint32_t i : f.indices)
+    if (i >= f.vertices.size()) throw std::logic_error("scheme '" + name + "': footprint index out of range");
+  footprintRanges_ = {{0, uint32_t(f.indices.size()), 0}};
+  auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
+  vertices_ = createBufferWithData(ctx_, f.vertices.data(), bytes(f.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  indices_ = createBufferWithData(ctx_, f.indices.data(), bytes(f.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  minimalPatchBuffers();
+  instanceCapacity_ = gpuLod_.maxInstances;
+  instances_ = createBuffer(ctx_, VkDeviceSize(sizeof(InstanceRecord)) * instanceCapacity_,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  const VkBufferUsageFlags state =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  lodState_ = createBufferWithData(ctx_, gpuLod_.initialState.data(), bytes(gpuLod_.initialState), state);
+  lodSnapshot_ = createBuffer(ctx_, bytes(gpuLod_.initialState), state, false);
+  // Zeros until the first pass writes them: an empty draw, never garbage counts.
+  const uint32_t noDraw[5] = {};
+  lodArgs_ = createBufferWithData(
+      ctx_, noDraw, kArgsBytes,
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  lodArgsReadback_ = createBuffer(ctx_, kArgsBytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  std::memset(lodArgsReadback_.mapped, 0, size_t(lodArgsReadback_.size));
+  for (const GpuLodPass& pass : gpuLod_.passes) {
+    vk::Unique<VkShaderModule> module = loadShaderModule(ctx_, pass.shader + ".comp.spv");
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module;
+    ci.stage.pName = "main";
+    ci.layout = bindings_.pipelineLayout;
+    VkPipeline raw;
+    VK_CHECK(vkCreateComputePipelines(ctx_.device, VK_NULL_HANDLE, 1, &ci, nullptr, &raw));
+    lodPipelines_.emplace_back(ctx_.device, raw);
+  }
+  gpuIndirect_ = true;
+}
+
+void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
+  // The previous frame's draw still reads the instances and arguments these passes rewrite.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  // No push constants here: the passes read none (DrawPush is the tessellation path's), and Mesa
+  // 22.3 lavapipe crashes in a dispatch that follows a push-constant update naming the compute stage
+  // (measured: an empty compute shader crashed with the update, ran without it).
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings_.pipelineLayout, 0, 1, &bindings_.set, 1,
+                          &dynOffset);
+  for (size_t k = 0; k < lodPipelines_.size(); ++k) {
+    if (k > 0)
+      memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lodPipelines_[k]);
+    vkCmdDispatch(cmd, gpuLod_.passes[k].groups, 1, 1);
+  }
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+void Renderer::copyLodState(const Buffer& from, const Buffer& to) {
+  if (!gpuIndirect_) throw std::logic_error("LOD state hooks: the scheme is not GPU-indirect");
+  finish();
+  runOneShot(ctx_, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, from.size};
+    vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region);
+  });
+}
+
+void Renderer::resetLodState() {
+  if (!gpuIndirect_) throw std::logic_error("LOD state hooks: the scheme is not GPU-indirect");
+  finish();
+  Buffer initial = createBufferWithData(ctx_, gpuLod_.initialState.data(),
+                                        VkDeviceSize(gpuLod_.initialState.size() * sizeof(uint32_t)),
+                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  copyLodState(initial, lodState_);
+}
+
+void Renderer::snapshotLodState() {
+  copyLodState(lodState_, lodSnapshot_);
+}
+
+void Renderer::restoreLodState() {
+  copyLodState(lodSnapshot_, lodState_);
+}
+
+std::vector<uint32_t> Renderer::readLodState() {
+  if (!gpuIndirect_) throw std::logic_error("LOD state hooks: the scheme is not GPU-indirect");
+  finish();
+  Buffer host = createBuffer(ctx_, lodState_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  copyLodState(lodState_, host);
+  const auto* p = static_cast<const uint32_t*>(host.mapped);
+  return std::vector<uint32_t>(p, p + gpuLod_.initialState.size());
+}
+
+}  // namespace lb
