@@ -45,7 +45,7 @@ struct MeshCrackResult {
   long triangles = 0;            // triangles read, invalid ones included
   long invalidTriangles = 0;     // a non-finite coordinate: skipped (the GPU draws nothing defined)
   long degenerateTriangles = 0;  // zero xz area up to tol (collapsed ones included)
-  long collapsedTriangles = 0;   // two bit-equal vertices: what the histogram's degenerate counter counts
+  long collapsedTriangles = 0;   // two bit-equal vertices (hist_degenerate also counts collinear ones)
   long openEdges = 0;            // odd parity after cancelling: borderEdges + unpairedEdges + cracks
   long borderEdges = 0;          // open, on the terrain border: ignored
   long unpairedEdges = 0;        // open, interior, overlapped by no other open edge (culled or missing neighbour)
