@@ -58,7 +58,6 @@
 // harness looks up), and while morphing the bound is (1 + mu) tau, not tau.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <list>
 #include <memory>
@@ -243,20 +242,7 @@ std::shared_ptr<const NodeErrors> cachedNodeErrors(const Heightfield& hf, const 
   };
   static std::mutex mutex;
   static std::list<Entry> cache;
-  std::vector<uint64_t> rowHash(size_t(hf.height));
-  parallelRows(hf.height, [&](int z0, int z1) {
-    for (int z = z0; z < z1; ++z) {
-      uint64_t h = 1469598103934665603ull;
-      for (size_t i = size_t(z) * size_t(hf.width); i < size_t(z + 1) * size_t(hf.width); ++i) {
-        uint32_t bits;
-        std::memcpy(&bits, &hf.h[i], 4);
-        h = (h ^ bits) * 1099511628211ull;
-      }
-      rowHash[size_t(z)] = h;
-    }
-  });
-  uint64_t hash = 1469598103934665603ull;
-  for (uint64_t h : rowHash) hash = (hash ^ h) * 1099511628211ull;
+  const uint64_t hash = hf.heightHash();
   std::lock_guard<std::mutex> lock(mutex);
   for (auto it = cache.begin(); it != cache.end(); ++it)
     if (it->width == hf.width && it->height == hf.height && it->base == pyr.base && it->q == q && it->hash == hash) {

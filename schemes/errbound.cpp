@@ -38,7 +38,6 @@
 // vertex positions are what the test's 5% tolerance absorbs. Patches whose level 64 still misses
 // the bound (camera very close to the ground) get 64 and are flagged in capture slot
 // LB_ERRBOUND_CAPTURE_UNMET; measurement frames count them (errbound_unmet_patches).
-#include <cstring>
 #include <list>
 #include <mutex>
 #include <vector>
@@ -48,7 +47,6 @@
 #include "shaders/errbound_params.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
-#include "terrain/parallel_rows.h"
 
 namespace lb {
 namespace {
@@ -64,21 +62,7 @@ const DeviationTable& cachedDeviation(const Heightfield& hf, int grid) {
   };
   static std::mutex mutex;
   static std::list<Entry> cache;
-  // FNV-1a per row (in parallel: a 16385^2 terrain has 268M heights), then over the row hashes.
-  std::vector<uint64_t> rowHash(size_t(std::max(hf.height, 0)));
-  parallelRows(hf.height, [&](int z0, int z1) {
-    for (int z = z0; z < z1; ++z) {
-      uint64_t h = 1469598103934665603ull;
-      for (size_t i = size_t(z) * size_t(hf.width); i < size_t(z + 1) * size_t(hf.width); ++i) {
-        uint32_t bits;
-        std::memcpy(&bits, &hf.h[i], 4);
-        h = (h ^ bits) * 1099511628211ull;
-      }
-      rowHash[size_t(z)] = h;
-    }
-  });
-  uint64_t hash = 1469598103934665603ull;
-  for (uint64_t h : rowHash) hash = (hash ^ h) * 1099511628211ull;
+  const uint64_t hash = hf.heightHash();
   std::lock_guard<std::mutex> lock(mutex);
   for (auto it = cache.begin(); it != cache.end(); ++it)
     if (it->width == hf.width && it->height == hf.height && it->grid == grid && it->extent == hf.extent &&

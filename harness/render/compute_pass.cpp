@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "render/pipeline.h"
 #include "shaders/shared.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
@@ -31,16 +32,7 @@ void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, Vk
   w[1].pImageInfo = &oi;
   vkUpdateDescriptorSets(ctx.device, 2, w, 0, nullptr);
 
-  vk::Unique<VkShaderModule> module = loadShaderModule(ctx, stem + ".comp.spv");
-  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  ci.stage.module = module;
-  ci.stage.pName = "main";
-  ci.layout = bindings.pipelineLayout;
-  VkPipeline raw;
-  VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &raw));
-  vk::Unique pipeline(ctx.device, raw);
+  vk::Unique<VkPipeline> pipeline = createComputePipeline(ctx, bindings.pipelineLayout, stem);
 
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,

@@ -76,4 +76,17 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
   return vk::Unique(ctx.device, pipeline);
 }
 
+vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem) {
+  vk::Unique<VkShaderModule> module = loadShaderModule(ctx, stem + ".comp.spv");
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.layout = layout;
+  VkPipeline raw;
+  VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &raw));
+  return vk::Unique(ctx.device, raw);
+}
+
 }  // namespace lb

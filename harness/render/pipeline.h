@@ -48,5 +48,8 @@ struct TessPipelineDesc {
 
 // Loads the stages' modules, builds the pipeline and releases the modules (also when it throws).
 vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& desc);
+// A compute pipeline of shaders/<stem>.comp on `layout` (one-off preprocessing passes and the
+// GPU-indirect path's LOD passes alike).
+vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem);
 
 }  // namespace lb

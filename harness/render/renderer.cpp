@@ -110,7 +110,8 @@ void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u
   uint64_t triangles = 0;
   for (size_t f = 0; f < footprintRanges_.size(); ++f) {
     const auto& records = selection_.instances[f];
-    std::memcpy(out, records.data(), records.size() * sizeof(InstanceRecord));
+    if (!records.empty())  // an empty vector's data() may be null, which memcpy must not get
+      std::memcpy(out, records.data(), records.size() * sizeof(InstanceRecord));
     out += records.size();
     slot.instFirst[f] = next;
     slot.instCount[f] = uint32_t(records.size());

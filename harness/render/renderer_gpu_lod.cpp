@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
 #include "vk/context.h"
@@ -45,18 +46,8 @@ void Renderer::createGpuLod() {
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   lodArgsReadback_ = createBuffer(ctx_, kArgsBytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   std::memset(lodArgsReadback_.mapped, 0, size_t(lodArgsReadback_.size));
-  for (const GpuLodPass& pass : gpuLod_.passes) {
-    vk::Unique<VkShaderModule> module = loadShaderModule(ctx_, pass.shader + ".comp.spv");
-    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = module;
-    ci.stage.pName = "main";
-    ci.layout = bindings_.pipelineLayout;
-    VkPipeline raw;
-    VK_CHECK(vkCreateComputePipelines(ctx_.device, VK_NULL_HANDLE, 1, &ci, nullptr, &raw));
-    lodPipelines_.emplace_back(ctx_.device, raw);
-  }
+  for (const GpuLodPass& pass : gpuLod_.passes)
+    lodPipelines_.push_back(createComputePipeline(ctx_, bindings_.pipelineLayout, pass.shader));
   gpuIndirect_ = true;
 }
 

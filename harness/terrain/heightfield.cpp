@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <thread>
 #include <utility>
@@ -249,6 +250,24 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
     return placed(loadHeightfield(spec));
   throw InputError("terrain: unknown type '" + spec.type +
                    "' (valid types: procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids)");
+}
+
+uint64_t Heightfield::heightHash() const {
+  std::vector<uint64_t> rowHash(size_t(std::max(height, 0)));
+  parallelRows(height, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z) {
+      uint64_t hash = 1469598103934665603ull;
+      for (size_t i = size_t(z) * size_t(width); i < size_t(z + 1) * size_t(width); ++i) {
+        uint32_t bits;
+        std::memcpy(&bits, &h[i], 4);
+        hash = (hash ^ bits) * 1099511628211ull;
+      }
+      rowHash[size_t(z)] = hash;
+    }
+  });
+  uint64_t hash = 1469598103934665603ull;
+  for (uint64_t r : rowHash) hash = (hash ^ r) * 1099511628211ull;
+  return hash;
 }
 
 }  // namespace lb

@@ -45,6 +45,9 @@ struct Heightfield {
   // texel coords t = (p / extent) * (size - 1), clamped, lerp of the 4 neighbours.
   float sample(float worldX, float worldZ) const;
   void updateRange();
+  // FNV-1a of the heights' bits (rows in parallel, then over the row hashes): the key of the caches
+  // schemes keep of load-time tables (errbound's deviations, cdlod-sse's node errors).
+  uint64_t heightHash() const;
 };
 
 // Where a heightfield comes from. Mirrors the "terrain" object of a config file.
