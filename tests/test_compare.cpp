@@ -423,5 +423,29 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }
 
+
+// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap) beside tessellated ones: compare
+// shows their LOD/draw split (medians of both sides, not judged) and gives tessellated cases none.
+TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
+  const std::string base = std::string(LODBENCH_SOURCE_DIR) + "/results/baseline/ci/";
+  CompareReport r = compareRuns(loadRun(base + "r1"), loadRun(base + "r2"), CompareOptions{});
+  int instanced = 0;
+  for (const CaseComparison& c : r.cases) {
+    const bool isInstanced = c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0;
+    if (!isInstanced) {
+      EXPECT_TRUE(c.split.empty()) << c.id;
+      continue;
+    }
+    ++instanced;
+    ASSERT_EQ(c.split.size(), 3u) << c.id;
+    EXPECT_EQ(c.split[0].key, "lod_ms");
+    EXPECT_EQ(c.split[2].key, "lod_cpu_ms");
+    EXPECT_GT(c.split[2].baseline, 0.0) << c.id;
+  }
+  EXPECT_EQ(instanced, 3);
+  EXPECT_NE(verdictMarkdown(r).find("## LOD and draw"), std::string::npos);
+  EXPECT_TRUE(verdictJson(r)["cases"][0].is_object());
+}
+
 }  // namespace
 }  // namespace lb

@@ -285,6 +285,16 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
     cc.id = id;
     cc.baselineStatus = b.status;
     cc.candidateStatus = c.status;
+    for (const char* key : {"lod_ms", "draw_ms", "lod_cpu_ms"}) {
+      auto median = [&](const nlohmann::json& s) -> const nlohmann::json* {
+        auto it = s.find(key);
+        if (it == s.end() || !it->is_object() || !it->contains("median") || !(*it)["median"].is_number())
+          return nullptr;
+        return &(*it)["median"];
+      };
+      if (const nlohmann::json* x = median(b.summary), *y = median(c.summary); x && y)
+        cc.split.push_back({key, x->get<double>(), y->get<double>()});
+    }
     if (b.status == "ok" && c.status != "ok") {
       cc.regressions.push_back("case " + c.status + " in the candidate: " + c.reason);
     } else if (b.status != "ok" && c.status == "ok") {

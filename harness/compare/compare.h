@@ -61,7 +61,14 @@ struct CaseComparison {
   bool exactDiffers = false;
   ExactDiff exact;
   TimingCheck timing;
-  std::vector<AccuracyCheck> accuracy;   // only metrics present in both
+  std::vector<AccuracyCheck> accuracy;  // only metrics present in both
+  // Draw paths that time their LOD apart (docs/draw-paths.md): the median of lod_ms, draw_ms and
+  // lod_cpu_ms on each side (first round's summary), where both sides have it. Shown, not judged.
+  struct Split {
+    std::string key;
+    double baseline = 0, candidate = 0;
+  };
+  std::vector<Split> split;
   std::vector<std::string> regressions;  // one line per reason this case regressed
   bool improved = false;
 };

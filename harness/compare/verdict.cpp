@@ -108,6 +108,11 @@ json verdictJson(const CompareReport& r) {
                      {"exact", exact},
                      {"timing", timing},
                      {"accuracy", acc}});
+    if (!c.split.empty()) {
+      json split = json::object();
+      for (auto& x : c.split) split[x.key] = {{"baseline", x.baseline}, {"candidate", x.candidate}};
+      cases.back()["lod_draw_split"] = split;
+    }
   }
   return {{"schema_version", kVerdictSchemaVersion},
           {"tool", "lodbench compare"},
@@ -198,6 +203,17 @@ std::string verdictMarkdown(const CompareReport& r) {
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | **" << num(t.ratio, "%.3f") << "x** ["
       << num(t.lo, "%.3f") << ", " << num(t.hi, "%.3f") << "] | " << num(t.p, "%.2g") << " | " << rounds << " | "
       << t.nBaseline << " / " << t.nCandidate << " | " << timingWords(t, r.options) << " |\n";
+  }
+
+  bool anySplit = false;
+  for (auto& c : r.cases) anySplit |= !c.split.empty();
+  if (anySplit) {
+    m << "\n## LOD and draw (medians, ms; draw paths that time them apart, not judged)\n\n"
+      << "| case | part | baseline | candidate |\n|---|---|---|---|\n";
+    for (auto& c : r.cases)
+      for (auto& x : c.split)
+        m << "| `" << c.id << "` | " << x.key << " | " << num(x.baseline, "%.4f") << " | " << num(x.candidate, "%.4f")
+          << " |\n";
   }
 
   bool anyAccuracy = false;
