@@ -423,7 +423,6 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }
 
-
 // The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap) beside tessellated ones: compare
 // shows their LOD/draw split (medians of both sides, not judged) and gives tessellated cases none.
 TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
