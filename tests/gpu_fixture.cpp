@@ -1,6 +1,8 @@
 #include "gpu_fixture.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 
 namespace lbtest {
 
@@ -46,6 +48,14 @@ lb::FrameResult renderOnce(lb::Renderer& r, const lb::CameraPose& pose) {
   auto done = r.takeCompleted();
   EXPECT_EQ(done.size(), 1u);
   return done.empty() ? lb::FrameResult{} : done.back();
+}
+
+std::vector<std::string> shippedPathFiles() {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths"))
+    if (e.path().extension() == ".csv") out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace lbtest

@@ -27,6 +27,9 @@ class GpuTest : public ::testing::Test {
   int errorsBefore_ = 0;
 };
 
+// File names of every shipped camera path (configs/paths/*.csv), sorted: "dive.csv", ...
+std::vector<std::string> shippedPathFiles();
+
 // Renders one frame synchronously and returns its statistics.
 lb::FrameResult renderOnce(lb::Renderer& r, const lb::CameraPose& pose);
 

@@ -16,6 +16,7 @@
 
 #include "camera/camera_path.h"
 #include "config/config.h"
+#include "gpu_fixture.h"
 #include "render/scheme.h"
 #include "schemes/registry.h"
 #include "sha256.h"
@@ -32,11 +33,7 @@ const std::string kHashFile = std::string(LODBENCH_SOURCE_DIR) + "/tests/data/im
 constexpr int kFps = 2;
 
 std::vector<std::string> shippedPaths() {
-  std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator(kConfigs + "/paths"))
-    if (e.path().extension() == ".csv") out.push_back(e.path().filename().string());
-  std::sort(out.begin(), out.end());
-  return out;
+  return lbtest::shippedPathFiles();
 }
 
 // Frames the runner replays for a path at kFps (t = 0, 1/fps, ... up to the path's end).

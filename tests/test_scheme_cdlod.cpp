@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "render/instanced.h"
+#include "render/renderer.h"
 #include "render/scheme.h"
 #include "schemes/preprocess/tess_deviation.h"
 #include "shaders/cdlod_params.h"
@@ -85,16 +86,7 @@ FrameUniforms frameFor(const Heightfield& hf, const Pose& pose, int w, int h, co
   u.lodView = view;
   u.lodProj = proj;
   u.lodEye = glm::vec4(eye, 1.0f);
-  const glm::mat4& vp = u.viewProj;
-  glm::vec4 r0(vp[0][0], vp[1][0], vp[2][0], vp[3][0]), r1(vp[0][1], vp[1][1], vp[2][1], vp[3][1]),
-      r2(vp[0][2], vp[1][2], vp[2][2], vp[3][2]), r3(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
-  u.frustum[0] = r3 + r0;
-  u.frustum[1] = r3 - r0;
-  u.frustum[2] = r3 + r1;
-  u.frustum[3] = r3 - r1;
-  u.frustum[4] = r2;
-  u.frustum[5] = r3 - r2;
-  for (auto& p : u.frustum) p /= glm::length(glm::vec3(p));
+  frustumPlanes(u.viewProj, u.frustum);
   u.viewport = glm::vec4(float(w), float(h), 1.0f / float(w), 1.0f / float(h));
   u.terrain = glm::vec4(hf.extent, 32.0f, float(hf.width), float(hf.height));
   u.origin = glm::vec4(float(hf.originX), float(hf.originZ), 0, 0);

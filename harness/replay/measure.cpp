@@ -129,6 +129,9 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   }
   // Saturation is a tessellation level at its cap; the instanced path's schemes count their own
   // limits (SchemeInfo::counters).
+  if (instanced)
+    m.unavailable["saturated_patches"] =
+        "no tessellation levels on this draw path: the scheme's own counters say where it hits its limits";
   set("saturated_patches", instanced ? kNan : saturatedPatches(levels, scheme.partitioning(params)));
   const std::vector<SchemeCounter>& counters = scheme.info().counters;
   if (!counters.empty()) {

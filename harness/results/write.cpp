@@ -184,7 +184,11 @@ json caseSummary(const CaseResult& r) {
   out["hist_backfacing_total"] = anyHistogram ? json(backfacing) : json(nullptr);
   out["hist_degenerate_total"] = anyHistogram ? json(degenerate) : json(nullptr);
   if (!unavailable.empty()) out["unavailable"] = unavailable;
-  out["saturated_fraction"] = double(saturatedFrames) / double(r.metrics.size());
+  // Unknown where no frame could count saturation (the instanced and GPU-indirect paths have no
+  // tessellation levels: `unavailable` says so), not 0.
+  out["saturated_fraction"] = series.count("saturated_patches")
+                                  ? json(double(saturatedFrames) / double(series["saturated_patches"].size()))
+                                  : json(nullptr);
   for (const SchemeCounter* counter : counters)
     if (series.count(counter->frameKey)) out[counter->caseKey] = framesAbove[counter->frameKey];
   json wf = json::object();

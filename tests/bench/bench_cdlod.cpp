@@ -6,6 +6,7 @@
 
 #include "bench.h"
 #include "render/instanced.h"
+#include "render/renderer.h"
 #include "render/scheme.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
@@ -45,11 +46,7 @@ std::vector<FrameUniforms> flight(const Heightfield& hf, const Scheme& scheme, c
     u.lodView = view;
     u.lodProj = proj;
     u.lodEye = glm::vec4(eye, 1.0f);
-    const glm::mat4& vp = u.viewProj;
-    glm::vec4 r0(vp[0][0], vp[1][0], vp[2][0], vp[3][0]), r1(vp[0][1], vp[1][1], vp[2][1], vp[3][1]),
-        r2(vp[0][2], vp[1][2], vp[2][2], vp[3][2]), r3(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
-    glm::vec4 planes[6] = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2};
-    for (int i = 0; i < 6; ++i) u.frustum[i] = planes[i] / glm::length(glm::vec3(planes[i]));
+    frustumPlanes(u.viewProj, u.frustum);
     u.viewport = glm::vec4(1920.0f, 1080.0f, 1.0f / 1920.0f, 1.0f / 1080.0f);
     u.terrain = glm::vec4(e, 32.0f, float(hf.width), float(hf.height));
     scheme.update(u, v);
