@@ -17,12 +17,13 @@ const Scheme& sphereEdgeScheme();
 const Scheme& cdlodScheme();
 const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
+const Scheme& cbtScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
       &uniformScheme(),    &sphereScheme(),   &interlockScheme(), &sphereRingsScheme(), &densityScheme(),
       &phongScheme(),      &distanceScheme(), &referenceScheme(), &planeFitScheme(),    &errBoundScheme(),
-      &sphereEdgeScheme(), &cdlodScheme(),    &cdlodSseScheme(),  &clipmapScheme(),
+      &sphereEdgeScheme(), &cdlodScheme(),    &cdlodSseScheme(),  &clipmapScheme(),     &cbtScheme(),
   };
   return schemes;
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lb {
@@ -65,12 +66,24 @@ class InstancedLod {
 struct GpuLodPass {
   std::string shader;   // shaders/<shader>.comp, the renderer's descriptor set and push constants
   uint32_t groups = 1;  // workgroups dispatched (x)
+  // Specialization constant 0 of the shader (a tree level, say), since the passes get no push
+  // constants (Renderer::recordLodPasses says why); < 0: the shader declares none.
+  int64_t spec = -1;
+  // >= 0: dispatched indirectly, VkDispatchIndirectCommand at this word of the state buffer (what
+  // an earlier pass or frame wrote there), and `groups` is ignored.
+  int64_t indirectWord = -1;
 };
 struct GpuLod {
   Footprint footprint;                 // the mesh every instance draws (its indices: the args' indexCount)
   std::vector<uint32_t> initialState;  // LB_BINDING_LOD_STATE after a reset
   uint32_t maxInstances = 0;           // room for the records the passes write
   std::vector<GpuLodPass> passes;      // every frame, in order, with barriers between them
+  // Stateful schemes (a tree the passes refine a little every frame) set the most updates that may
+  // reach a static camera's fixed point: the harness converges, snapshots and replays their state
+  // (replay/lod_replay.h). 0: the passes' output depends on the frame alone.
+  uint32_t convergeLimit = 0;
+  // What the state's size follows from (a tree's depth, its bytes), recorded with the case.
+  std::vector<std::pair<std::string, double>> facts;
 };
 
 // Finest lattice cell of a terrain of width x height samples at `cellsPerTexel` cells per sample

@@ -76,13 +76,17 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
   return vk::Unique(ctx.device, pipeline);
 }
 
-vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem) {
+vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem,
+                                             const uint32_t* spec) {
   vk::Unique<VkShaderModule> module = loadShaderModule(ctx, stem + ".comp.spv");
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   ci.stage.module = module;
   ci.stage.pName = "main";
+  VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+  VkSpecializationInfo specInfo{1, &entry, sizeof(uint32_t), spec};
+  if (spec) ci.stage.pSpecializationInfo = &specInfo;
   ci.layout = layout;
   VkPipeline raw;
   VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &raw));

@@ -50,6 +50,8 @@ struct TessPipelineDesc {
 vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& desc);
 // A compute pipeline of shaders/<stem>.comp on `layout` (one-off preprocessing passes and the
 // GPU-indirect path's LOD passes alike).
-vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem);
+// `spec`: the value of specialization constant 0 (uint), when the shader declares one.
+vk::Unique<VkPipeline> createComputePipeline(Context& ctx, VkPipelineLayout layout, const std::string& stem,
+                                             const uint32_t* spec = nullptr);
 
 }  // namespace lb

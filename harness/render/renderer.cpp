@@ -70,7 +70,8 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   if (lod_) selectInstances(slots_[size_t(slotIndex)], slotIndex, u);
   // The GPU decides how many instances: room for as many as the passes may write.
   if (gpuIndirect_ && captureMeshNext_)
-    prepareMeshCapture(uint64_t(gpuLod_.maxInstances) * (footprintRanges_[0].indexCount / 3));
+    prepareMeshCapture(uint64_t(lodFrozen_ ? lastLodInstances_ : gpuLod_.maxInstances) *
+                       (footprintRanges_[0].indexCount / 3));
 }
 
 void Renderer::prepareMeshCapture(uint64_t triangles) {
@@ -181,7 +182,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   // The LOD timestamp closes the LOD work: the GPU-indirect path's compute passes, or nothing on the
   // instanced path, whose selection ran on the CPU before this frame (FrameResult::lodCpuMs).
   const bool instanced = lod_ != nullptr || gpuIndirect_;
-  if (gpuIndirect_) recordLodPasses(cmd, dynOffset);
+  if (gpuIndirect_ && !lodFrozen_) recordLodPasses(cmd, dynOffset);
   if (instanced) profiler_.timestampLod(cmd, slotIndex);
   vkCmdBeginRendering(cmd, &ri);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the

@@ -152,6 +152,17 @@ class Renderer {
   void snapshotLodState();
   void restoreLodState();
   std::vector<uint32_t> readLodState();
+  void loadLodState(const std::vector<uint32_t>& words);  // the whole state, e.g. another renderer's
+  // Stateful GPU-indirect schemes (GpuLod::convergeLimit > 0) are measured by replaying their
+  // updates (replay/lod_replay.h): updateLod runs one frame's LOD passes alone for `pose` and
+  // returns the instance count they left; while frozen, frames draw the last update's instances
+  // without running the passes, so measurement passes see the state a timed frame drew.
+  bool statefulLod() const { return gpuIndirect_ && gpuLod_.convergeLimit > 0; }
+  uint32_t convergeLimit() const { return gpuIndirect_ ? gpuLod_.convergeLimit : 0; }
+  const std::vector<std::pair<std::string, double>>& gpuLodFacts() const { return gpuLod_.facts; }
+  uint32_t updateLod(const CameraPose& pose);
+  void setLodFrozen(bool frozen) { lodFrozen_ = frozen; }
+  bool lodFrozen() const { return lodFrozen_; }
   // Instanced and GPU-indirect paths: every triangle's three world vertices drawn by the last measureHistogram
   // (captured by the histogram's geometry shader); empty on the tessellation path.
   const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
@@ -234,6 +245,8 @@ class Renderer {
   GpuLod gpuLod_;
   std::vector<vk::Unique<VkPipeline>> lodPipelines_;
   Buffer lodState_, lodSnapshot_, lodArgs_, lodArgsReadback_;
+  bool lodFrozen_ = false;
+  uint32_t lastLodInstances_ = 0;  // the instance count the last updateLod left
 };
 
 }  // namespace lb

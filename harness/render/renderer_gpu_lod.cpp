@@ -35,8 +35,9 @@ void Renderer::createGpuLod() {
   instanceCapacity_ = gpuLod_.maxInstances;
   instances_ = createBuffer(ctx_, VkDeviceSize(sizeof(InstanceRecord)) * instanceCapacity_,
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
-  const VkBufferUsageFlags state =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  // Indirect too: a pass may dispatch the next by counts an earlier one wrote into the state.
+  const VkBufferUsageFlags state = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   lodState_ = createBufferWithData(ctx_, gpuLod_.initialState.data(), bytes(gpuLod_.initialState), state);
   lodSnapshot_ = createBuffer(ctx_, bytes(gpuLod_.initialState), state, false);
   // Zeros until the first pass writes them: an empty draw, never garbage counts.
@@ -46,9 +47,16 @@ void Renderer::createGpuLod() {
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   lodArgsReadback_ = createBuffer(ctx_, kArgsBytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   std::memset(lodArgsReadback_.mapped, 0, size_t(lodArgsReadback_.size));
-  for (const GpuLodPass& pass : gpuLod_.passes)
-    lodPipelines_.push_back(createComputePipeline(ctx_, bindings_.pipelineLayout, pass.shader));
+  for (const GpuLodPass& pass : gpuLod_.passes) {
+    if (pass.indirectWord >= 0 && uint64_t(pass.indirectWord + 3) > gpuLod_.initialState.size())
+      throw std::logic_error("scheme '" + name + "': indirect dispatch arguments outside the state");
+    const uint32_t spec = uint32_t(pass.spec);
+    lodPipelines_.push_back(
+        createComputePipeline(ctx_, bindings_.pipelineLayout, pass.shader, pass.spec >= 0 ? &spec : nullptr));
+  }
   gpuIndirect_ = true;
+  lodFrozen_ = false;
+  lastLodInstances_ = 0;
 }
 
 void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
@@ -64,10 +72,15 @@ void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
   for (size_t k = 0; k < lodPipelines_.size(); ++k) {
     if (k > 0)
       memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lodPipelines_[k]);
-    vkCmdDispatch(cmd, gpuLod_.passes[k].groups, 1, 1);
+    const GpuLodPass& pass = gpuLod_.passes[k];
+    if (pass.indirectWord >= 0)
+      vkCmdDispatchIndirect(cmd, lodState_.buffer, VkDeviceSize(pass.indirectWord) * sizeof(uint32_t));
+    else
+      vkCmdDispatch(cmd, pass.groups, 1, 1);
   }
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
@@ -98,6 +111,39 @@ void Renderer::snapshotLodState() {
 
 void Renderer::restoreLodState() {
   copyLodState(lodSnapshot_, lodState_);
+}
+
+void Renderer::loadLodState(const std::vector<uint32_t>& words) {
+  if (!gpuIndirect_) throw std::logic_error("LOD state hooks: the scheme is not GPU-indirect");
+  if (words.size() != gpuLod_.initialState.size())
+    throw std::logic_error("loadLodState: " + std::to_string(words.size()) + " words, the state has " +
+                           std::to_string(gpuLod_.initialState.size()));
+  finish();
+  Buffer from = createBufferWithData(ctx_, words.data(), VkDeviceSize(words.size() * sizeof(uint32_t)),
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  copyLodState(from, lodState_);
+}
+
+uint32_t Renderer::updateLod(const CameraPose& pose) {
+  if (!gpuIndirect_) throw std::logic_error("updateLod: the scheme is not GPU-indirect");
+  finish();
+  // The passes read the frame uniforms of a slot like a frame's; no frame is in flight to share it.
+  const int si = nextSlot_;
+  const bool frozen = lodFrozen_;
+  lodFrozen_ = false;
+  fillUniforms(si, pose, pose);
+  lodFrozen_ = frozen;
+  runOneShot(ctx_, [&](VkCommandBuffer cmd) {
+    recordLodPasses(cmd, uint32_t(uniformStride_ * VkDeviceSize(si)));
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferCopy region{0, VkDeviceSize(si) * 5 * sizeof(uint32_t), 5 * sizeof(uint32_t)};
+    vkCmdCopyBuffer(cmd, lodArgs_.buffer, lodArgsReadback_.buffer, 1, &region);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
+  });
+  lastLodInstances_ = static_cast<const uint32_t*>(lodArgsReadback_.mapped)[size_t(si) * 5 + 1];
+  return lastLodInstances_;
 }
 
 std::vector<uint32_t> Renderer::readLodState() {

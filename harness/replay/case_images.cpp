@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "metrics/cracks.h"
 #include "render/image_io.h"
+#include "replay/lod_replay.h"
 #include "replay/run_case.h"
 #include "vk/context.h"
 
@@ -58,8 +60,28 @@ std::vector<std::string> writeCaseImages(const CaseImageInputs& in, const std::v
   rs.testSlowdown = 0;
   Renderer img(in.ctx, in.terrain, rs);
   img.setScheme(in.scheme, in.renderer.params());
-  for (int frame : frames) {
+  // A stateful LOD: both renderers walk from the case's S0 to each frame, drawing frozen there.
+  std::unique_ptr<LodReplay> imgReplay, caseReplay;
+  std::unique_ptr<FrozenLod> imgFrozen, caseFrozen;
+  if (in.renderer.statefulLod()) {
+    in.renderer.restoreLodState();
+    img.loadLodState(in.renderer.readLodState());
+    img.snapshotLodState();
+    imgReplay = std::make_unique<LodReplay>(img, in.pose, in.timedLod);
+    caseReplay = std::make_unique<LodReplay>(in.renderer, in.pose, in.timedLod);
+  }
+  std::vector<int> ordered = frames;
+  if (imgReplay) std::sort(ordered.begin(), ordered.end());  // a replay only moves forward
+  for (int frame : ordered) {
     const CameraPose p = in.pose(frame);
+    if (imgReplay) {
+      imgFrozen.reset();
+      caseFrozen.reset();
+      imgReplay->advanceTo(frame);
+      caseReplay->advanceTo(frame);
+      imgFrozen = std::make_unique<FrozenLod>(img);
+      caseFrozen = std::make_unique<FrozenLod>(in.renderer);
+    }
     std::vector<uint8_t> shaded;  // drawn once per frame when two modes need it
     auto shadedPx = [&]() -> const std::vector<uint8_t>& {
       if (shaded.empty()) shaded = img.renderImage(p, p, RenderMode::Shaded);

@@ -40,6 +40,8 @@ struct CaseImageInputs {
   ReferenceCache& refs;
   std::function<CameraPose(int)> pose;
   std::string imageDir;
+  // Stateful LOD (replay/lod_replay.h): the timed frames' instance counts the replays must meet.
+  std::vector<uint32_t> timedLod;
 };
 
 // Writes <imageDir>/<case>_f<frame>_<mode>.png for every frame and configured mode and returns

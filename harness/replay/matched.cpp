@@ -1,10 +1,12 @@
 #include "replay/matched.h"
 
 #include <cmath>
+#include <memory>
 
 #include "camera/camera_path.h"
 #include "config/config.h"
 #include "render/renderer.h"
+#include "replay/lod_replay.h"
 #include "stats.h"
 
 namespace lb {
@@ -22,15 +24,30 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   Renderer r(ctx, terrain, {c.width, c.height, c.grid});
 
+  auto poseAt = [&](int f) { return samplePose(path, config.fps, f, terrain); };
   auto evaluate = [&](double v) {
     ParamValues pv = base;
     pv[out.param] = ps->integer ? std::round(v) : v;
     r.setScheme(scheme, pv);
+    // A stateful LOD is judged on the states its case would draw: converged, warmed up, then the
+    // path's updates up to each evaluated frame (replay/lod_replay.h), drawn frozen there.
+    std::unique_ptr<LodReplay> replay;
+    if (r.statefulLod()) {
+      convergeLod(r, poseAt(0));
+      for (int i = 0; i < config.warmupFrames; ++i) r.updateLod(poseAt(0));
+      r.snapshotLodState();
+      replay = std::make_unique<LodReplay>(r, poseAt, std::vector<uint32_t>{});
+    }
     double sum = 0;
     int n = std::max(1, std::min(spec.frames, frames));
     for (int k = 0; k < n; ++k) {
       int f = n == 1 ? 0 : k * (frames - 1) / (n - 1);
-      CameraPose p = samplePose(path, config.fps, f, terrain);
+      CameraPose p = poseAt(f);
+      std::unique_ptr<FrozenLod> frozen;
+      if (replay) {
+        replay->advanceTo(f);
+        frozen = std::make_unique<FrozenLod>(r);
+      }
       if (spec.metric == "triangles") {
         r.submitFrame(f, p, p);
         r.finish();

@@ -32,7 +32,8 @@ static double saturatedPatches(const std::vector<float>& levels, Partitioning p)
 
 FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const ParamValues& params,
                           const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
-                          ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current) {
+                          ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current,
+                          const RgbaImage* popBefore) {
   FrameMetrics m;
   m.frame = frame;
   auto set = [&](const std::string& k, double v) { m.values.emplace_back(k, v); };
@@ -122,7 +123,13 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   if (spec.on("popping")) {
     // A case's first frame has no previous frame: popping is undefined there (null), not 0, so
     // summaries average only frames that could pop.
-    PopResult pop = frame > 0 ? measurePopping(r, previous, current) : PopResult{kNan, kNan, 0};
+    PopResult pop{kNan, kNan, 0};
+    if (frame > 0 && popBefore) {  // a stateful LOD: its previous state from this view, against this one
+      ImageError e = compareImages(*popBefore, m.shaded);
+      pop = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
+    } else if (frame > 0) {
+      pop = measurePopping(r, previous, current);
+    }
     set("pop_mean", pop.mean);
     set("pop_p99", pop.p99);
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);

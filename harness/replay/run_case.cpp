@@ -10,6 +10,7 @@
 #include "camera/camera_path.h"
 #include "error.h"
 #include "replay/case_images.h"
+#include "replay/lod_replay.h"
 #include "replay/matched.h"
 #include "replay/measure.h"
 #include "replay/timing_passes.h"
@@ -104,6 +105,12 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };
+  // A stateful scheme starts every timed pass from the same converged state (replay/lod_replay.h).
+  const bool stateful = renderer.statefulLod();
+  if (stateful) {
+    ConvergeResult converged = convergeLod(renderer, pose(0));
+    result.lodState = lodStateJson(converged, renderer.gpuLodFacts());
+  }
 
   if (progress) progress->phase(Phase::Timing);
   // Clock control: a fixed workload until its time is stable, so every case starts at a settled clock.
@@ -117,10 +124,12 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   for (int i = 0; i < config.warmupFrames; ++i) renderer.submitFrame(-1, pose(0), pose(0));
   renderer.finish();
   renderer.takeCompleted();
+  if (stateful) renderer.snapshotLodState();
 
   int total = frames * config.repetitions;
   for (int rep = 0; rep < config.repetitions; ++rep)
     for (int f = 0; f < frames; ++f) {
+      if (stateful && f == 0) renderer.restoreLodState();
       if (gStop) throw Interrupted();
       if (config.caseTimeoutS > 0 && secondsSince(t0) > config.caseTimeoutS)
         throw std::runtime_error("timeout: the case ran longer than " + std::to_string(config.caseTimeoutS) + " s");
@@ -152,7 +161,34 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     return false;
   };
   if (progress) progress->phase(Phase::Measure);
-  if (ms.every > 0) {
+  std::vector<uint32_t> timedLod;  // stateful: the first repetition's instances, frame by frame
+  if (stateful) {
+    timedLod = timedInstances(result.frames, frames);
+    int count = ms.every > 0 ? (frames + ms.every - 1) / ms.every : 0, done = 0;
+    LodReplay replay(renderer, pose, timedLod);
+    for (int f = 0; f < frames; ++f) {
+      if (gStop) throw Interrupted();
+      const bool measured = ms.every > 0 && f % ms.every == 0;
+      RgbaImage before;  // popping: the previous state drawn from this frame's view
+      if (measured && f > 0 && ms.on("popping")) {
+        FrozenLod frozen(renderer);
+        before = {renderer.settings().width, renderer.settings().height,
+                  renderer.renderImage(pose(f), pose(f), RenderMode::Shaded)};
+      }
+      replay.advanceTo(f);
+      if (!measured) continue;
+      FrozenLod frozen(renderer);
+      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
+                                    pose(std::max(0, f - 1)), pose(f), before.px.empty() ? nullptr : &before);
+      if (wantsImage(f)) kept[f] = m;
+      m.shaded = {};
+      m.reference = {};
+      m.errorMap.clear();
+      m.crackMask.clear();
+      result.metrics.push_back(std::move(m));
+      if (progress) progress->frame(++done, count);
+    }
+  } else if (ms.every > 0) {
     int count = (frames + ms.every - 1) / ms.every, done = 0;
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
@@ -173,7 +209,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   // (replay/case_images.h): the configured frames and the worst measured ones.
   if (!config.images.modes.empty()) {
     json worst = result.metrics.empty() ? json() : caseSummary(result).value("worst_frames", json());
-    CaseImageInputs in{ctx, c, config, *scheme, renderer, terrain, referenceKey(c), refs, pose, imageDir};
+    CaseImageInputs in{ctx, c, config, *scheme, renderer, terrain, referenceKey(c), refs, pose, imageDir, timedLod};
     result.images = writeCaseImages(in, imageFrames(config.images, frames, worst), kept);
   }
   result.seconds = secondsSince(t0);

@@ -28,6 +28,7 @@ std::vector<FrameResult> replayInMode(Renderer& renderer, RenderMode mode, int f
   std::vector<FrameResult> out;
   for (int rep = 0; rep < repetitions; ++rep)
     for (int f = 0; f < frames; ++f) {
+      if (f == 0 && renderer.statefulLod()) renderer.restoreLodState();  // S0, as the shaded pass
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p, mode);
       for (auto& r : renderer.takeCompleted()) out.push_back(r);
@@ -48,7 +49,8 @@ std::string compareTessellationCounters(const std::vector<FrameResult>& shaded, 
         {"ia_primitives", {a.iaPrimitives, b.iaPrimitives}},
         {"vs_invocations", {a.vsInvocations, b.vsInvocations}},
         {"patches", {a.tcsPatches, b.tcsPatches}},
-        {"tes_invocations", {a.tesInvocations, b.tesInvocations}}};
+        {"tes_invocations", {a.tesInvocations, b.tesInvocations}},
+        {"instances", {shaded[i].instances, other[i].instances}}};
     for (auto& [name, v] : counters)
       if (v.first != v.second)
         return mode + " frame " + std::to_string(shaded[i].frame) + ": " + name + " " + std::to_string(v.second) +

@@ -140,6 +140,8 @@ json caseSummary(const CaseResult& r) {
     if (!ms.empty()) out["gpu_ms_" + mode] = summaryOf(ms);
   }
   if (!r.calibration.is_null()) out["calibration"] = r.calibration;
+  if (r.lodState.is_object())
+    for (const auto& [k, v] : r.lodState.items()) out[k] = v;
   if (r.metrics.empty()) return out;
   // Per metric: statistics over the measured frames where it is available.
   std::map<std::string, std::vector<double>> series;

@@ -31,6 +31,9 @@ struct CaseResult {
   std::map<std::string, std::vector<FrameResult>> modeFrames;
   nlohmann::json calibration;   // clock-control calibration (null when off)
   TerrainSource terrainSource;  // what the case's terrain was read from (driver "": generated or never read)
+  // Stateful GPU LOD (replay/lod_replay.h): converge_updates, lod_converged and the state's size
+  // facts, merged into the case summary; null for every other scheme.
+  nlohmann::json lodState;
 };
 
 void writeFileAtomic(const std::string& path, const std::string& contents);

@@ -1,0 +1,70 @@
+#include "replay/lod_replay.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace lb {
+
+ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
+  r.resetLodState();
+  ConvergeResult out;
+  const int limit = int(r.convergeLimit());
+  uint32_t last = 0;
+  int steady = 0;
+  while (out.updates < limit) {
+    uint32_t n = r.updateLod(pose);
+    ++out.updates;
+    steady = out.updates > 1 && n == last ? steady + 1 : 0;
+    last = n;
+    if (steady >= kSteadyUpdates) {
+      out.converged = true;
+      break;
+    }
+  }
+  return out;
+}
+
+nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts) {
+  nlohmann::json out = {{"converge_updates", c.updates}, {"lod_converged", c.converged}};
+  for (const auto& [k, v] : facts) out[k] = v;
+  return out;
+}
+
+static std::runtime_error diverged(const std::string& what, int frame, uint32_t got, uint32_t want) {
+  return std::runtime_error("LOD replay diverged: " + what + " frame " + std::to_string(frame) + " has " +
+                            std::to_string(got) + " instances, the first timed repetition " + std::to_string(want));
+}
+
+std::vector<uint32_t> timedInstances(const std::vector<FrameResult>& frames, int framesPerRep) {
+  std::vector<uint32_t> first;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    if (i < size_t(framesPerRep)) {
+      first.push_back(frames[i].instances);
+    } else if (frames[i].instances != first[i % size_t(framesPerRep)]) {
+      throw diverged("repetition " + std::to_string(i / size_t(framesPerRep) + 1), frames[i].frame, frames[i].instances,
+                     first[i % size_t(framesPerRep)]);
+    }
+  }
+  return first;
+}
+
+LodReplay::LodReplay(Renderer& r, std::function<CameraPose(int)> pose, std::vector<uint32_t> expected)
+    : r_(r), pose_(std::move(pose)), expected_(std::move(expected)) {
+  restart();
+}
+
+void LodReplay::restart() {
+  r_.restoreLodState();
+  next_ = 0;
+}
+
+void LodReplay::advanceTo(int frame) {
+  if (frame < next_ - 1) throw std::logic_error("LodReplay: frame " + std::to_string(frame) + " is behind the replay");
+  for (; next_ <= frame; ++next_) {
+    uint32_t n = r_.updateLod(pose_(next_));
+    if (size_t(next_) < expected_.size() && n != expected_[size_t(next_)])
+      throw diverged("the replay's", next_, n, expected_[size_t(next_)]);
+  }
+}
+
+}  // namespace lb

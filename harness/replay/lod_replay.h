@@ -1,0 +1,60 @@
+#pragma once
+// Stateful LOD schemes (Renderer::statefulLod: a tree the GPU refines a little every frame) are
+// measured on the state the timed frames drew. The timed frame f drew S0 updated with the poses of
+// frames 0 ... f, S0 being the converged state after the warm-up (snapshotted, restored before every
+// repetition and timing-mode replay). Measurement, images and matched searches replay those updates
+// alone and draw frozen (Renderer::setLodFrozen) at the frames they look at; a replay whose instance
+// counts differ from the timed frames' fails the case ("LOD replay diverged").
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "camera/camera_path.h"
+#include "render/renderer.h"
+
+namespace lb {
+
+struct ConvergeResult {
+  int updates = 0;         // updates run from the reset
+  bool converged = false;  // the instance count held for kSteadyUpdates updates within the limit
+};
+constexpr int kSteadyUpdates = 4;
+
+// Resets the state, then updates at `pose` until the instance count is unchanged for kSteadyUpdates
+// updates, at most Renderer::convergeLimit; not converging is recorded, not fatal.
+ConvergeResult convergeLod(Renderer& r, const CameraPose& pose);
+
+// The case's state record: converge_updates, lod_converged and the scheme's facts (GpuLod::facts).
+nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts);
+
+// Checks that every repetition's instance counts equal the first's (each started from S0) and
+// returns the first repetition's, frame by frame; throws "LOD replay diverged" otherwise.
+std::vector<uint32_t> timedInstances(const std::vector<FrameResult>& frames, int framesPerRep);
+
+// Walks a renderer's state along the path from S0 (its snapshot): advanceTo(f) runs the updates of
+// the frames not yet replayed, up to f, checking each count against the timed frames'.
+class LodReplay {
+ public:
+  LodReplay(Renderer& r, std::function<CameraPose(int)> pose, std::vector<uint32_t> expected);
+  void restart();  // back to S0, before frame 0
+  void advanceTo(int frame);
+  int next() const { return next_; }  // the first frame not replayed yet
+
+ private:
+  Renderer& r_;
+  std::function<CameraPose(int)> pose_;
+  std::vector<uint32_t> expected_;
+  int next_ = 0;
+};
+
+// Draws frozen for its lifetime (and unfreezes when a measurement throws).
+struct FrozenLod {
+  Renderer& r;
+  explicit FrozenLod(Renderer& renderer) : r(renderer) { r.setLodFrozen(true); }
+  ~FrozenLod() { r.setLodFrozen(false); }
+  FrozenLod(const FrozenLod&) = delete;
+  FrozenLod& operator=(const FrozenLod&) = delete;
+};
+
+}  // namespace lb

@@ -1,0 +1,157 @@
+// Concurrent binary tree (Dupuy, "Concurrent Binary Trees (with application to longest edge
+// bisection)", HPG 2020; the LEB2D terrain demo; Benyoub & Dupuy, "Concurrent Binary Trees for
+// Large-Scale Game Components", HPG 2024): longest-edge bisection of the terrain square kept on the
+// GPU and refined a little every frame. Drawn through the GPU-indirect path: four compute passes
+// (shaders/cbt_*.comp) update the tree and write one instanced indirect draw of a leaf mesh.
+//
+// Tree. Node 1 is the square, nodes 2 and 3 its halves along the diagonal, node k's children 2k and
+// 2k + 1 the halves of its hypotenuse. The state holds a bitfield over the 2^D nodes of depth D, one
+// set bit per leaf (at its leftmost descendant), its copy as of the last reduction (what the next
+// update reads while it changes the bitfield), and the sum reduction of every level down to one
+// 32-bit word a node (shaders/cbt_params.h): a node is split exactly when its subtree holds two or
+// more bits, so leaf i is found by an O(D) walk from the root (shaders/cbt.glsl cbtLeaf). Splitting a
+// node sets one bit and merging clears one: concurrent updates need only atomicOr and atomicAnd.
+//
+// Depth. The square is 2^L lattice units a side, L = ceil(log2(S)) for S = (samples - 1) *
+// cells_per_texel along the longer axis (at least s + 2), and D = 2 (L - s) + 1, so the deepest
+// leaf's micro-triangles have legs of one lattice unit: no finer than the heightfield asks for
+// (the note's D = 13 for 513^2, 23 for 16385^2 at s = 3). Every corner down to depth D, micro-
+// vertices included, is then an integer, and shared vertices are bit-identical.
+//
+// Rule (LEB2D, terrain.cpp computeLodFactor and TerrainRenderCommon.glsl). LoD = 2 + 2 log2(px / t),
+// px the leaf's hypotenuse |e| projected at its midpoint m, |e| K / (|m| 2^s) with K the pixels per
+// unit at distance 1: the micro-triangle's hypotenuse in pixels. Split when LoD > 1 (px > t / sqrt 2),
+// merge a diamond when neither parent would split, so at rest micro-hypotenuses are t/2 ... t/sqrt 2
+// pixels, areas t^2/16 ... t^2/8: targetAreaPx = t^2 / (8 sqrt 2) is the middle of that octave. Split
+// on even updates (conforming: the node across the hypotenuse splits too, and its parent first when
+// it is coarser), merge on odd ones, so the detail moves by at most a level a frame. Leaves outside
+// the culling frustum (box: the leaf's triangle in x, z and the terrain's height range) neither
+// split nor keep their parents split; as in LEB2D they are still drawn. Left out: the demo's
+// flatness test, whose threshold is in world units.
+//
+// Parameters: tri_size t = 7 px and subd s = 3 (64 triangles a leaf) are LEB2D's defaults.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "error.h"
+#include "render/scheme.h"
+#include "shaders/cbt_params.h"
+#include "terrain/heightfield.h"
+
+namespace lb {
+namespace {
+
+constexpr uint32_t kMaxDepth = 27;  // 16 MiB of bits, 32 MiB of sums
+constexpr uint32_t kMaxRecords = 1u << 20;
+
+uint32_t floatBits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+// The leaf mesh: a right triangle cut 2^s times along each leg, vertices (u, v) with u + v <= 2^s,
+// u towards corner a and v towards c. The map (u, v) -> b + u (a - b) + v (c - b) reverses the
+// orientation, so (u, v) triangles are clockwise to come out counter-clockwise in (x, z).
+Footprint leafMesh(int s) {
+  const int n = 1 << s;
+  Footprint f;
+  f.name = "leaf";
+  std::vector<std::vector<uint32_t>> at(size_t(n + 1));
+  for (int v = 0; v <= n; ++v)
+    for (int u = 0; u + v <= n; ++u) {
+      at[size_t(u)].push_back(uint32_t(f.vertices.size()));
+      f.vertices.emplace_back(float(u), float(v));
+    }
+  auto idx = [&](int u, int v) { return at[size_t(u)][size_t(v)]; };
+  for (int v = 0; v < n; ++v)
+    for (int u = 0; u + v < n; ++u) {
+      f.indices.insert(f.indices.end(), {idx(u, v), idx(u, v + 1), idx(u + 1, v)});
+      if (u + v + 2 <= n) f.indices.insert(f.indices.end(), {idx(u + 1, v), idx(u, v + 1), idx(u + 1, v + 1)});
+    }
+  return f;
+}
+
+class Cbt : public Scheme {
+ public:
+  const SchemeInfo& info() const override {
+    static const SchemeInfo kInfo = {
+        .name = "cbt",
+        .description =
+            "concurrent binary tree: longest-edge bisection refined on the GPU every frame, leaves instanced",
+        .seed = "Dupuy 2020, Concurrent Binary Trees; LEB2D demo; Benyoub & Dupuy 2024 (large_cbt)",
+        .params = {{"tri_size", LB_CBT_TRI_SIZE, 7, 0.5, 64, false,
+                    "target micro-triangle hypotenuse in pixels: split while it projects over tri_size / sqrt 2"},
+                   {"subd", LB_CBT_SUBD, 3, 0, 5, true, "each leaf is drawn as 4^subd triangles"},
+                   {"cells_per_texel", LB_CBT_CELLS_PER_TEXEL, 1, 0.25, 16, false,
+                    "finest micro-triangle legs per heightfield sample spacing (sets the tree's depth)"},
+                   {"cull", LB_CBT_CULL, 1, 0, 1, true, "1 = leaves outside the frustum merge and never split"}},
+        .mainParam = "tri_size",
+        .mainParamRole = MainParamRole::TriangleWidthPx,
+        .path = DrawPath::GpuIndirect,
+        .vert = "cbt",
+    };
+    return kInfo;
+  }
+
+  double targetAreaPx(const ParamValues& v) const override {
+    const double t = v.at("tri_size");
+    return t * t / (8.0 * std::sqrt(2.0));
+  }
+
+  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override {
+    const int s = int(v.at("subd"));
+    const double cells = double(std::max(hf.width, hf.height) - 1) * v.at("cells_per_texel");
+    const uint32_t L = std::max(uint32_t(std::ceil(std::log2(std::max(cells, 1.0)) - 1e-9)), uint32_t(s) + 2);
+    const uint32_t D = 2 * (L - uint32_t(s)) + 1;
+    if (D > kMaxDepth)
+      throw InputError("cbt: a tree of depth " + std::to_string(D) + " (terrain of " + std::to_string(cells) +
+                       " cells, subd " + std::to_string(s) + ") exceeds depth " + std::to_string(kMaxDepth) +
+                       ": raise subd or lower cells_per_texel");
+    GpuLod g;
+    g.footprint = leafMesh(s);
+    const uint32_t words = 1u << (D - 5), sums = LB_CBT_HEADER + 2 * words;
+    std::vector<uint32_t>& st = g.initialState;
+    st.assign(size_t(sums) + (size_t(1) << (D - 4)), 0u);
+    const uint32_t leaves = 2;
+    g.maxInstances = std::min(kMaxRecords, 1u << std::min(D, 31u));
+    st[LB_CBT_DEPTH] = D;
+    st[LB_CBT_LATTICE_LOG2] = L;
+    st[LB_CBT_CAPACITY] = g.maxInstances;
+    st[LB_CBT_DISPATCH] = 1, st[LB_CBT_DISPATCH + 1] = 1, st[LB_CBT_DISPATCH + 2] = 1;
+    st[LB_CBT_LEAVES] = leaves;
+    st[LB_CBT_MIN_HEIGHT] = floatBits(hf.minHeight);
+    st[LB_CBT_MAX_HEIGHT] = floatBits(hf.maxHeight);
+    st[LB_CBT_INDEX_COUNT] = uint32_t(g.footprint.indices.size());
+    // The two root triangles' bits (nodes 2 and 3, at their leftmost descendants) and their sums.
+    const uint64_t bits[2] = {0, uint64_t(1) << (D - 1)};
+    for (uint64_t b : bits) {
+      st[LB_CBT_HEADER + b / 32] |= 1u << (b % 32);
+      st[LB_CBT_HEADER + words + b / 32] |= 1u << (b % 32);
+      for (uint32_t l = 0; l + 5 <= D; ++l) st[sums + (1u << l) + uint32_t(b >> (D - l))] += 1;
+    }
+    g.passes.push_back({.shader = "cbt_update", .indirectWord = LB_CBT_DISPATCH});
+    for (int start = int(D) - 5;; start -= 6) {
+      g.passes.push_back({.shader = "cbt_reduce", .groups = ((1u << start) + 31) / 32, .spec = start});
+      if (start <= 5) break;
+    }
+    g.passes.push_back({.shader = "cbt_batch", .groups = 1});
+    g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
+    g.convergeLimit = 2 * D + 8;
+    g.facts = {{"cbt_depth", double(D)},
+               {"cbt_lattice_log2", double(L)},
+               {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},
+               {"cbt_capacity", double(g.maxInstances)}};
+    return g;
+  }
+};
+
+}  // namespace
+
+const Scheme& cbtScheme() {
+  static const Cbt scheme;
+  return scheme;
+}
+
+}  // namespace lb
