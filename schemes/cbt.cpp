@@ -30,12 +30,13 @@
 // flatness test, whose threshold is in world units.
 //
 // Parameters: tri_size t = 7 px and subd s = 3 (64 triangles a leaf) are LEB2D's defaults.
+#include "schemes/cbt.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "error.h"
-#include "render/scheme.h"
 #include "shaders/cbt_params.h"
 #include "terrain/heightfield.h"
 
@@ -73,6 +74,73 @@ Footprint leafMesh(int s) {
   return f;
 }
 
+}  // namespace
+
+GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, uint32_t perDraw) {
+  const int s = int(v.at("subd"));
+  const double cells = double(std::max(hf.width, hf.height) - 1) * v.at("cells_per_texel");
+  const uint32_t L = std::max(uint32_t(std::ceil(std::log2(std::max(cells, 1.0)) - 1e-9)), uint32_t(s) + 2);
+  const uint32_t D = 2 * (L - uint32_t(s)) + 1;
+  if (D > kMaxDepth)
+    throw InputError("cbt: a tree of depth " + std::to_string(D) + " (terrain of " + std::to_string(cells) +
+                     " cells, subd " + std::to_string(s) + ") exceeds depth " + std::to_string(kMaxDepth) +
+                     ": raise subd or lower cells_per_texel");
+  GpuLod g;
+  g.footprint = leafMesh(s);
+  const uint32_t words = 1u << (D - 5), sums = LB_CBT_HEADER + 2 * words;
+  std::vector<uint32_t>& st = g.initialState;
+  st.assign(size_t(sums) + (size_t(1) << (D - 4)), 0u);
+  const uint32_t leaves = 2;
+  g.maxInstances = std::min(kMaxRecords, 1u << std::min(D, 31u));
+  st[LB_CBT_DEPTH] = D;
+  st[LB_CBT_LATTICE_LOG2] = L;
+  st[LB_CBT_CAPACITY] = g.maxInstances;
+  st[LB_CBT_DISPATCH] = 1, st[LB_CBT_DISPATCH + 1] = 1, st[LB_CBT_DISPATCH + 2] = 1;
+  st[LB_CBT_LEAVES] = leaves;
+  st[LB_CBT_MIN_HEIGHT] = floatBits(hf.minHeight);
+  st[LB_CBT_MAX_HEIGHT] = floatBits(hf.maxHeight);
+  st[LB_CBT_INDEX_COUNT] = uint32_t(g.footprint.indices.size());
+  // The two root triangles' bits (nodes 2 and 3, at their leftmost descendants) and their sums.
+  const uint64_t bits[2] = {0, uint64_t(1) << (D - 1)};
+  for (uint64_t b : bits) {
+    st[LB_CBT_HEADER + b / 32] |= 1u << (b % 32);
+    st[LB_CBT_HEADER + words + b / 32] |= 1u << (b % 32);
+    for (uint32_t l = 0; l + 5 <= D; ++l) st[sums + (1u << l) + uint32_t(b >> (D - l))] += 1;
+  }
+  g.passes.push_back({.shader = "cbt_update", .indirectWord = LB_CBT_DISPATCH});
+  for (int start = int(D) - 5;; start -= 6) {
+    g.passes.push_back({.shader = "cbt_reduce", .groups = ((1u << start) + 31) / 32, .spec = start});
+    if (start <= 5) break;
+  }
+  g.passes.push_back({.shader = "cbt_batch", .groups = 1, .spec = perDraw});
+  g.maxDraws = perDraw == 0 ? 1 : (g.maxInstances + perDraw - 1) / perDraw;
+  g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
+  g.convergeLimit = 2 * D + 8;
+  g.facts = {{"cbt_depth", double(D)},
+             {"cbt_lattice_log2", double(L)},
+             {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},
+             {"cbt_capacity", double(g.maxInstances)}};
+  return g;
+}
+
+const std::vector<ParamSpec>& cbtParams() {
+  static const std::vector<ParamSpec> kParams = {
+      {"tri_size", LB_CBT_TRI_SIZE, 7, 0.5, 64, false,
+       "target micro-triangle hypotenuse in pixels: split while it projects over tri_size / sqrt 2"},
+      {"subd", LB_CBT_SUBD, 3, 0, 5, true, "each leaf is drawn as 4^subd triangles"},
+      {"cells_per_texel", LB_CBT_CELLS_PER_TEXEL, 1, 0.25, 16, false,
+       "finest micro-triangle legs per heightfield sample spacing (sets the tree's depth)"},
+      {"cull", LB_CBT_CULL, 1, 0, 1, true, "1 = leaves outside the frustum merge and never split"}};
+  return kParams;
+}
+
+double cbtTargetAreaPx(const ParamValues& v) {
+  const double t = v.at("tri_size");
+  return t * t / (8.0 * std::sqrt(2.0));
+}
+
+namespace {
+
 class Cbt : public Scheme {
  public:
   const SchemeInfo& info() const override {
@@ -81,12 +149,7 @@ class Cbt : public Scheme {
         .description =
             "concurrent binary tree: longest-edge bisection refined on the GPU every frame, leaves instanced",
         .seed = "Dupuy 2020, Concurrent Binary Trees; LEB2D demo; Benyoub & Dupuy 2024 (large_cbt)",
-        .params = {{"tri_size", LB_CBT_TRI_SIZE, 7, 0.5, 64, false,
-                    "target micro-triangle hypotenuse in pixels: split while it projects over tri_size / sqrt 2"},
-                   {"subd", LB_CBT_SUBD, 3, 0, 5, true, "each leaf is drawn as 4^subd triangles"},
-                   {"cells_per_texel", LB_CBT_CELLS_PER_TEXEL, 1, 0.25, 16, false,
-                    "finest micro-triangle legs per heightfield sample spacing (sets the tree's depth)"},
-                   {"cull", LB_CBT_CULL, 1, 0, 1, true, "1 = leaves outside the frustum merge and never split"}},
+        .params = cbtParams(),
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
         .path = DrawPath::GpuIndirect,
@@ -95,56 +158,9 @@ class Cbt : public Scheme {
     return kInfo;
   }
 
-  double targetAreaPx(const ParamValues& v) const override {
-    const double t = v.at("tri_size");
-    return t * t / (8.0 * std::sqrt(2.0));
-  }
+  double targetAreaPx(const ParamValues& v) const override { return cbtTargetAreaPx(v); }
 
-  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override {
-    const int s = int(v.at("subd"));
-    const double cells = double(std::max(hf.width, hf.height) - 1) * v.at("cells_per_texel");
-    const uint32_t L = std::max(uint32_t(std::ceil(std::log2(std::max(cells, 1.0)) - 1e-9)), uint32_t(s) + 2);
-    const uint32_t D = 2 * (L - uint32_t(s)) + 1;
-    if (D > kMaxDepth)
-      throw InputError("cbt: a tree of depth " + std::to_string(D) + " (terrain of " + std::to_string(cells) +
-                       " cells, subd " + std::to_string(s) + ") exceeds depth " + std::to_string(kMaxDepth) +
-                       ": raise subd or lower cells_per_texel");
-    GpuLod g;
-    g.footprint = leafMesh(s);
-    const uint32_t words = 1u << (D - 5), sums = LB_CBT_HEADER + 2 * words;
-    std::vector<uint32_t>& st = g.initialState;
-    st.assign(size_t(sums) + (size_t(1) << (D - 4)), 0u);
-    const uint32_t leaves = 2;
-    g.maxInstances = std::min(kMaxRecords, 1u << std::min(D, 31u));
-    st[LB_CBT_DEPTH] = D;
-    st[LB_CBT_LATTICE_LOG2] = L;
-    st[LB_CBT_CAPACITY] = g.maxInstances;
-    st[LB_CBT_DISPATCH] = 1, st[LB_CBT_DISPATCH + 1] = 1, st[LB_CBT_DISPATCH + 2] = 1;
-    st[LB_CBT_LEAVES] = leaves;
-    st[LB_CBT_MIN_HEIGHT] = floatBits(hf.minHeight);
-    st[LB_CBT_MAX_HEIGHT] = floatBits(hf.maxHeight);
-    st[LB_CBT_INDEX_COUNT] = uint32_t(g.footprint.indices.size());
-    // The two root triangles' bits (nodes 2 and 3, at their leftmost descendants) and their sums.
-    const uint64_t bits[2] = {0, uint64_t(1) << (D - 1)};
-    for (uint64_t b : bits) {
-      st[LB_CBT_HEADER + b / 32] |= 1u << (b % 32);
-      st[LB_CBT_HEADER + words + b / 32] |= 1u << (b % 32);
-      for (uint32_t l = 0; l + 5 <= D; ++l) st[sums + (1u << l) + uint32_t(b >> (D - l))] += 1;
-    }
-    g.passes.push_back({.shader = "cbt_update", .indirectWord = LB_CBT_DISPATCH});
-    for (int start = int(D) - 5;; start -= 6) {
-      g.passes.push_back({.shader = "cbt_reduce", .groups = ((1u << start) + 31) / 32, .spec = start});
-      if (start <= 5) break;
-    }
-    g.passes.push_back({.shader = "cbt_batch", .groups = 1});
-    g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
-    g.convergeLimit = 2 * D + 8;
-    g.facts = {{"cbt_depth", double(D)},
-               {"cbt_lattice_log2", double(L)},
-               {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},
-               {"cbt_capacity", double(g.maxInstances)}};
-    return g;
-  }
+  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override { return cbtTree(hf, v, 0); }
 };
 
 }  // namespace

@@ -18,12 +18,14 @@ const Scheme& cdlodScheme();
 const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
 const Scheme& cbtScheme();
+const Scheme& cbtTsScheme();
 
 const std::vector<const Scheme*>& allSchemes() {
   static const std::vector<const Scheme*> schemes = {
-      &uniformScheme(),    &sphereScheme(),   &interlockScheme(), &sphereRingsScheme(), &densityScheme(),
-      &phongScheme(),      &distanceScheme(), &referenceScheme(), &planeFitScheme(),    &errBoundScheme(),
-      &sphereEdgeScheme(), &cdlodScheme(),    &cdlodSseScheme(),  &clipmapScheme(),     &cbtScheme(),
+      &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
+      &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
+      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(), &cdlodScheme(),
+      &cdlodSseScheme(), &clipmapScheme(),  &cbtScheme(),        &cbtTsScheme(),
   };
   return schemes;
 }

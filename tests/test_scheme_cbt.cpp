@@ -64,6 +64,7 @@ TEST_F(Cbt, ConvergesOnEveryShippedPathThenHoldsItsTreeAndConforms) {
     EXPECT_GT(leaves.size(), 2u) << file << ": the tree never refined";
     // One more frame (an update at the fixed point changes nothing) draws them all.
     FrameResult f = renderOnce(r, pose);
+    FrozenLod frozen(r);
     EXPECT_EQ(f.instances, leaves.size()) << file;
     EXPECT_EQ(f.stats.clipInvocations, f.instances * 64u) << file << ": subd 3 is 64 triangles a leaf";
     TriangleHistogram h = r.measureHistogram(pose, pose);
@@ -104,4 +105,49 @@ TEST_F(Cbt, EveryUpdateAlongAPathConformsAndTheReplayMeetsIt) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("LOD replay diverged"), std::string::npos) << e.what();
   }
+}
+
+// cbt-ts: the same tree on every frame (the whole state, byte for byte), each leaf tessellated into
+// the ring layout's T(2^subd) triangles, split into draws of at most kMaxVerticesPerDraw / (n+1)^2
+// patches, and as closed as cbt's mesh.
+TEST_F(Cbt, CbtTsDrawsExactlyCbtsLeavesThroughTheTessellator) {
+  const Heightfield& hf = testTerrain();
+  CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/lowalt.csv");
+  auto pose = [&](int f) { return samplePose(path, 10, f, hf); };
+  const ParamValues params = {{"tri_size", 2}, {"subd", 3}, {"cells_per_texel", 4}};
+  Renderer instanced(gpu(), hf, {320, 180, 16}), tessellated(gpu(), hf, {320, 180, 16});
+  instanced.setScheme(cbtScheme(), params);
+  tessellated.setScheme(*findScheme("cbt-ts"), params);
+  convergeLod(instanced, pose(0));
+  convergeLod(tessellated, pose(0));
+  auto rings = [](int n) {  // the triangle domain's triangles at integer level n
+    int t = n % 2;
+    for (int k = 2 - n % 2; k <= n; k += 2) t += 6 * (k - 1);
+    return uint64_t(t);
+  };
+  ASSERT_EQ(rings(1), 1u);
+  ASSERT_EQ(rings(2), 6u);
+  ASSERT_EQ(rings(3), 13u);
+  const uint64_t perDraw = kMaxVerticesPerDraw / 81;
+  const int frames = std::min(frameCount(path, 10), 30);
+  bool severalDraws = false;
+  for (int f = 0; f < frames; ++f) {
+    FrameResult a = renderOnce(instanced, pose(f)), b = renderOnce(tessellated, pose(f));
+    std::vector<uint32_t> treeA = instanced.readLodState(), treeB = tessellated.readLodState();
+    treeA[LB_CBT_INDEX_COUNT] = treeB[LB_CBT_INDEX_COUNT] = 0;  // their leaf meshes differ
+    EXPECT_EQ(treeA, treeB) << "frame " << f;
+    EXPECT_EQ(b.instances, a.instances) << "frame " << f;
+    EXPECT_EQ(a.stats.clipInvocations, a.instances * 64u) << "frame " << f;
+    EXPECT_EQ(b.stats.clipInvocations, b.instances * rings(8)) << "frame " << f;
+    EXPECT_EQ(b.draws, (b.instances + perDraw - 1) / perDraw) << "frame " << f;
+    severalDraws = severalDraws || b.draws > 1;
+    if (f % 10 == 0) {
+      FrozenLod frozen(tessellated);  // a measurement draws the state, it does not update it
+      TriangleHistogram h = tessellated.measureHistogram(pose(f), pose(f));
+      EXPECT_EQ(h.total(), b.stats.clipInvocations) << "frame " << f;
+      EXPECT_EQ(meshCracks(tessellated.capturedMesh(), {glm::vec2(0.0f), glm::vec2(hf.extent)}).crackSites, 0)
+          << "frame " << f;
+    }
+  }
+  EXPECT_TRUE(severalDraws) << "no frame needed more than one draw: the split is untested";
 }

@@ -82,6 +82,13 @@ struct GpuLod {
   // reach a static camera's fixed point: the harness converges, snapshots and replays their state
   // (replay/lod_replay.h). 0: the passes' output depends on the frame alone.
   uint32_t convergeLimit = 0;
+  // Indirect draws of the footprint: 1, VkDrawIndexedIndirectCommand at word 0 of LB_BINDING_LOD_ARGS;
+  // more (a tessellated footprint split to stay within a device's limits), up to maxDraws commands
+  // from word 0 and their count at word 5 maxDraws (vkCmdDrawIndexedIndirectCount).
+  uint32_t maxDraws = 1;
+  // Triangles one instance becomes (room for the mesh capture); 0: the footprint's own. A patch
+  // footprint (a control shader) states what the tessellator makes of it.
+  uint32_t trianglesPerInstance = 0;
   // What the state's size follows from (a tree's depth, its bytes), recorded with the case.
   std::vector<std::pair<std::string, double>> facts;
 };

@@ -70,8 +70,9 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   if (lod_) selectInstances(slots_[size_t(slotIndex)], slotIndex, u);
   // The GPU decides how many instances: room for as many as the passes may write.
   if (gpuIndirect_ && captureMeshNext_)
-    prepareMeshCapture(uint64_t(lodFrozen_ ? lastLodInstances_ : gpuLod_.maxInstances) *
-                       (footprintRanges_[0].indexCount / 3));
+    prepareMeshCapture(
+        uint64_t(lodFrozen_ ? lastLodInstances_ : gpuLod_.maxInstances) *
+        (gpuLod_.trianglesPerInstance > 0 ? gpuLod_.trianglesPerInstance : footprintRanges_[0].indexCount / 3));
 }
 
 void Renderer::prepareMeshCapture(uint64_t triangles) {
@@ -196,7 +197,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
     vkCmdBindVertexBuffers(cmd, 0, 1, vertices_.buffer.ptr(), &zero);
     vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
     if (gpuIndirect_) {
-      vkCmdDrawIndexedIndirect(cmd, lodArgs_.buffer, 0, 1, 5 * sizeof(uint32_t));
+      drawLod(cmd);
       return;
     }
     if (instanced) {
@@ -253,10 +254,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   if (gpuIndirect_) {  // the arguments the passes wrote, for FrameResult::instances
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferCopy region{0, VkDeviceSize(slotIndex) * 5 * sizeof(uint32_t), 5 * sizeof(uint32_t)};
-    vkCmdCopyBuffer(cmd, lodArgs_.buffer, lodArgsReadback_.buffer, 1, &region);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                  VK_ACCESS_2_HOST_READ_BIT);
+    copyLodArgs(cmd, slotIndex);
   }
   if (slot.readback) {
     imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -320,8 +318,9 @@ void Renderer::collect(int si) {
   r.lodMs = sample.lodMs;
   r.drawMs = sample.drawMs;
   if (gpuIndirect_) {
-    r.instances = static_cast<const uint32_t*>(lodArgsReadback_.mapped)[size_t(si) * 5 + 1];
-    r.draws = 1;
+    const LodDrawn drawn = lodDrawn(si);
+    r.instances = drawn.instances;
+    r.draws = drawn.draws;
   } else if (lod_) {
     r.lodCpuMs = slot.lodCpuMs;
     for (uint32_t n : slot.instCount) {

@@ -198,6 +198,13 @@ class Renderer {
   void createGpuLod();
   void recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset);
   void copyLodState(const Buffer& from, const Buffer& to);
+  size_t argsWords() const;                              // LB_BINDING_LOD_ARGS, in uint32
+  void drawLod(VkCommandBuffer cmd);                     // the indirect draw(s) the passes wrote
+  void copyLodArgs(VkCommandBuffer cmd, int slotIndex);  // into the slot's readback, for the host
+  struct LodDrawn {
+    uint32_t instances = 0, draws = 0;
+  };
+  LodDrawn lodDrawn(int slotIndex) const;  // what those arguments drew
 
   // Every Vulkan object below is owned by a vk::Unique (directly or through Buffer, Image and
   // Bindings): when the constructor throws half-way, the members built so far release theirs.

@@ -1,9 +1,11 @@
 // The renderer's GPU-indirect path (render/instanced.h GpuLod): the scheme's compute passes write
 // instances and indirect draw arguments every frame on a state buffer that persists across frames;
 // the hooks reset, snapshot and restore that state.
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
+#include "error.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -13,21 +15,24 @@
 
 namespace lb {
 
-namespace {
-constexpr VkDeviceSize kArgsBytes = 5 * sizeof(uint32_t);  // VkDrawIndexedIndirectCommand
-}
-
 void Renderer::createGpuLod() {
   const std::string& name = scheme_->info().name;
   gpuLod_ = scheme_->gpuLod(terrain_, params_);
   const Footprint& f = gpuLod_.footprint;
+  const bool tessellated = !scheme_->info().tesc.empty();  // one patch a leaf (cbt-ts)
   if (f.indices.empty() || f.indices.size() % 3 != 0 || gpuLod_.maxInstances == 0 || gpuLod_.passes.empty() ||
-      gpuLod_.initialState.empty())
+      gpuLod_.initialState.empty() || gpuLod_.maxDraws == 0)
     throw std::logic_error("scheme '" + name +
                            "' is GPU-indirect but supplies no footprint, state, capacity or passes");
   for (uint32_t i : f.indices)
     if (i >= f.vertices.size()) throw std::logic_error("scheme '" + name + "': footprint index out of range");
+  if (gpuLod_.maxDraws > 1 && (!ctx_.drawIndirectCount || !ctx_.enabledFeatures.multiDrawIndirect ||
+                               !ctx_.enabledFeatures.drawIndirectFirstInstance))
+    throw FeatureMissing("scheme '" + name +
+                         "' draws with vkCmdDrawIndexedIndirectCount: the device lacks drawIndirectCount, "
+                         "multiDrawIndirect or drawIndirectFirstInstance");
   footprintRanges_ = {{0, uint32_t(f.indices.size()), 0}};
+  controlPoints_ = tessellated ? 3 : controlPoints_;
   auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
   vertices_ = createBufferWithData(ctx_, f.vertices.data(), bytes(f.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   indices_ = createBufferWithData(ctx_, f.indices.data(), bytes(f.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
@@ -41,11 +46,12 @@ void Renderer::createGpuLod() {
   lodState_ = createBufferWithData(ctx_, gpuLod_.initialState.data(), bytes(gpuLod_.initialState), state);
   lodSnapshot_ = createBuffer(ctx_, bytes(gpuLod_.initialState), state, false);
   // Zeros until the first pass writes them: an empty draw, never garbage counts.
-  const uint32_t noDraw[5] = {};
+  const std::vector<uint32_t> noDraw(argsWords(), 0u);
   lodArgs_ = createBufferWithData(
-      ctx_, noDraw, kArgsBytes,
+      ctx_, noDraw.data(), noDraw.size() * sizeof(uint32_t),
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  lodArgsReadback_ = createBuffer(ctx_, kArgsBytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  lodArgsReadback_ =
+      createBuffer(ctx_, noDraw.size() * sizeof(uint32_t) * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   std::memset(lodArgsReadback_.mapped, 0, size_t(lodArgsReadback_.size));
   for (const GpuLodPass& pass : gpuLod_.passes) {
     if (pass.indirectWord >= 0 && uint64_t(pass.indirectWord + 3) > gpuLod_.initialState.size())
@@ -85,6 +91,35 @@ void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
                 VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+size_t Renderer::argsWords() const {
+  return gpuLod_.maxDraws == 1 ? 5 : 5 * size_t(gpuLod_.maxDraws) + 1;
+}
+
+void Renderer::drawLod(VkCommandBuffer cmd) {
+  constexpr uint32_t stride = 5 * sizeof(uint32_t);
+  if (gpuLod_.maxDraws == 1)
+    vkCmdDrawIndexedIndirect(cmd, lodArgs_.buffer, 0, 1, stride);
+  else
+    vkCmdDrawIndexedIndirectCount(cmd, lodArgs_.buffer, 0, lodArgs_.buffer, VkDeviceSize(gpuLod_.maxDraws) * stride,
+                                  gpuLod_.maxDraws, stride);
+}
+
+void Renderer::copyLodArgs(VkCommandBuffer cmd, int slotIndex) {
+  const VkDeviceSize bytes = argsWords() * sizeof(uint32_t);
+  VkBufferCopy region{0, VkDeviceSize(slotIndex) * bytes, bytes};
+  vkCmdCopyBuffer(cmd, lodArgs_.buffer, lodArgsReadback_.buffer, 1, &region);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                VK_ACCESS_2_HOST_READ_BIT);
+}
+
+Renderer::LodDrawn Renderer::lodDrawn(int slotIndex) const {
+  const auto* a = static_cast<const uint32_t*>(lodArgsReadback_.mapped) + size_t(slotIndex) * argsWords();
+  LodDrawn out;
+  out.draws = gpuLod_.maxDraws == 1 ? 1 : std::min(a[5 * gpuLod_.maxDraws], gpuLod_.maxDraws);
+  for (uint32_t k = 0; k < out.draws; ++k) out.instances += a[5 * k + 1];
+  return out;
 }
 
 void Renderer::copyLodState(const Buffer& from, const Buffer& to) {
@@ -137,12 +172,9 @@ uint32_t Renderer::updateLod(const CameraPose& pose) {
     recordLodPasses(cmd, uint32_t(uniformStride_ * VkDeviceSize(si)));
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferCopy region{0, VkDeviceSize(si) * 5 * sizeof(uint32_t), 5 * sizeof(uint32_t)};
-    vkCmdCopyBuffer(cmd, lodArgs_.buffer, lodArgsReadback_.buffer, 1, &region);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                  VK_ACCESS_2_HOST_READ_BIT);
+    copyLodArgs(cmd, si);
   });
-  lastLodInstances_ = static_cast<const uint32_t*>(lodArgsReadback_.mapped)[size_t(si) * 5 + 1];
+  lastLodInstances_ = lodDrawn(si).instances;
   return lastLodInstances_;
 }
 

@@ -329,11 +329,12 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
 
   TessPipelineDesc d;
   d.layout = bindings_.pipelineLayout;
-  if (instanced) {
+  if (instanced && info.tesc.empty()) {
     d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, info.vert + ".vert.spv"}};
     d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   } else {
-    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, "terrain.vert.spv"},
+    // A GPU-indirect scheme with a control shader (cbt-ts) draws its instances as patches.
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, instanced ? info.vert + ".vert.spv" : "terrain.vert.spv"},
                 {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, info.tesc + ".tesc.spv", &captureSpec},
                 {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
                  info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv"}};

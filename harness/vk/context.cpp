@@ -255,6 +255,13 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;                              // wireframe images only
   ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
   ctx.enabledFeatures.geometryShader = have.geometryShader;                                  // measurement passes only
+  // GPU-indirect schemes that split their draw (cbt-ts): a count and first instances from the GPU.
+  ctx.enabledFeatures.multiDrawIndirect = have.multiDrawIndirect;
+  ctx.enabledFeatures.drawIndirectFirstInstance = have.drawIndirectFirstInstance;
+  VkPhysicalDeviceVulkan12Features have12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 have2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &have12};
+  vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &have2);
+  ctx.drawIndirectCount = have12.drawIndirectCount;
   // Tests simulate a device without optional features (LODBENCH_TEST_DISABLE=geometryShader,...).
   if (const char* off = std::getenv("LODBENCH_TEST_DISABLE")) {
     std::string list = off;
@@ -273,6 +280,7 @@ void createContext(Context& ctx, const ContextOptions& options) {
   f13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
   f12.hostQueryReset = VK_TRUE;
+  f12.drawIndirectCount = ctx.drawIndirectCount;
   VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f12};
   di.queueCreateInfoCount = 1;
   di.pQueueCreateInfos = &qi;

@@ -36,6 +36,7 @@ struct Context {
   VkPhysicalDeviceProperties props{};
   VkPhysicalDeviceMemoryProperties memProps{};
   VkPhysicalDeviceFeatures enabledFeatures{};
+  bool drawIndirectCount = false;  // Vulkan 1.2 feature, enabled where the device has it
   std::string driverName, driverInfo;
   bool validationEnabled = false;
   std::vector<DeviceCandidate> candidates;
