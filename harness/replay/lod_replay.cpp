@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sha256.h"
+
 namespace lb {
 
 ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
@@ -21,11 +23,19 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
       break;
     }
   }
+  out.instances = last;
+  std::vector<uint32_t> state = r.readLodState();
+  if (!state.empty()) state[0] = 0;
+  out.stateSha256 =
+      sha256Hex(std::string(reinterpret_cast<const char*>(state.data()), state.size() * sizeof(uint32_t)));
   return out;
 }
 
 nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts) {
-  nlohmann::json out = {{"converge_updates", c.updates}, {"lod_converged", c.converged}};
+  nlohmann::json out = {{"converge_updates", c.updates},
+                        {"lod_converged", c.converged},
+                        {"converged_instances", c.instances},
+                        {"converged_state_sha256", c.stateSha256}};
   for (const auto& [k, v] : facts) out[k] = v;
   return out;
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "camera/camera_path.h"
@@ -18,6 +19,10 @@ namespace lb {
 struct ConvergeResult {
   int updates = 0;         // updates run from the reset
   bool converged = false;  // the instance count held for kSteadyUpdates updates within the limit
+  uint32_t instances = 0;  // at the end
+  // SHA-256 of the converged state but its first word (the update counter): equal states on two
+  // devices mean the same tree.
+  std::string stateSha256;
 };
 constexpr int kSteadyUpdates = 4;
 
