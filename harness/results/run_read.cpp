@@ -31,6 +31,7 @@ void readCaseRecord(CaseRecord& c, const json& j) {
     if (m.is_object() && m.contains("grid") && m["grid"].is_number_integer()) c.grid = m["grid"].get<int>();
   }
   if (auto t = j.find("target_area_px"); t != j.end() && t->is_number()) c.targetAreaPx = t->get<double>();
+  if (auto m = j.find("matched"); m != j.end() && m->is_object()) c.matched = *m;
 }
 
 }  // namespace lb

@@ -21,6 +21,7 @@ struct CaseRecord {
   nlohmann::json summary = nlohmann::json::object();
   nlohmann::json frames = nlohmann::json::array();  // per-frame records; empty without a case file
   std::optional<double> targetAreaPx;
+  nlohmann::json matched;  // the matched search's result (case file "matched"); null when off
 };
 
 // Takes the fields a record has, each only where it has the expected type; fields it lacks keep

@@ -1,0 +1,153 @@
+#include "report/equal_error.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "schemes/registry.h"
+#include "stats.h"
+
+namespace lb {
+
+using nlohmann::json;
+
+namespace {
+
+const char* pathName(const std::string& scheme) {
+  const Scheme* s = findScheme(scheme);
+  if (!s) return "?";
+  switch (s->info().path) {
+    case DrawPath::Tessellation:
+      return "tessellation";
+    case DrawPath::InstancedGrid:
+      return "instanced grid";
+    case DrawPath::GpuIndirect:
+      return s->info().tesc.empty() ? "GPU-indirect" : "GPU-indirect, tessellated";
+  }
+  return "?";
+}
+
+// Triangles a measured frame drew that cover some ground: the clipper's count less the histogram's
+// degenerate ones (zero ground area: morph collapses, clipmap strips); median over measured frames.
+std::optional<double> nonDegenerateMedian(const ReportCase& c) {
+  std::vector<double> v;
+  for (const json& f : c.frames) {
+    auto clip = frameValue(f, "clip_invocations"), degenerate = frameValue(f, "hist_degenerate");
+    if (clip && degenerate) v.push_back(*clip - *degenerate);
+  }
+  if (v.empty()) return std::nullopt;
+  return percentile(v, 50);
+}
+
+std::string deviceName(const ReportRun& run) {
+  auto it = run.context.find("device");
+  return it != run.context.end() && it->is_string() ? it->get<std::string>() : "an unrecorded device";
+}
+
+bool softwareDevice(const std::string& device) {
+  std::string lower = device;
+  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+  return lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
+         lower.find("swiftshader") != std::string::npos;
+}
+
+struct Row {
+  const ReportCase* c;
+  double gpuMedian;
+};
+
+}  // namespace
+
+EqualErrorSection equalErrorSection(const ReportRun& run) {
+  EqualErrorSection out;
+  std::vector<Row> rows;
+  std::string metric;
+  double target = 0;
+  for (const ReportCase& c : run.cases) {
+    if (c.status != "ok" || !c.matched.is_object() || !c.matched.contains("target")) continue;
+    metric = c.matched.value("metric", "");
+    target = c.matched.value("target", 0.0);
+    rows.push_back({&c, summaryStat(c.summary, "gpu_ms", "median").value_or(INFINITY)});
+  }
+  if (rows.empty()) return out;
+  out.present = true;
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.gpuMedian < b.gpuMedian; });
+  out.title = "Cost at equal error: " + metric + " " + formatValue(target);
+  out.intro =
+      "Every scheme's main parameter was searched until its " + metric + " over the search's frames met " +
+      formatValue(target) +
+      " (config \"match\"); each row is the case run at the value found, cheapest GPU median first. LOD ms and "
+      "draw ms split the frame where the draw path decides its LOD apart from drawing (instanced grid: the CPU "
+      "selection is lod_cpu_ms, outside the GPU time; GPU-indirect: the compute passes); on the tessellation path "
+      "the LOD decision runs inside the draw. Non-degenerate triangles leave out the zero-area ones (morph "
+      "collapses, clipmap strips), median over measured frames. Unreachable targets are marked: the search "
+      "stopped at the parameter's bound.";
+  const std::string device = deviceName(run);
+  if (softwareDevice(device))
+    out.caveat = "Caveat: " + device +
+                 " is a software rasterizer. Tessellation is emulated on the CPU there, so these timings are no "
+                 "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "
+                 "any device.";
+  out.table.header = {"scheme",       "draw path",   "parameter", "reached",  "err_p95_px (run)", "GPU ms median",
+                      "GPU ms p95",   "LOD ms",      "draw ms",   "LOD CPU ms", "triangles",      "non-degenerate"};
+  out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true};
+  json data = json::array();
+  for (const Row& r : rows) {
+    const ReportCase& c = *r.c;
+    const json& m = c.matched;
+    const bool reachable = m.value("reachable", true);
+    std::string param = m.value("param", "") + " = " + (m["value"].is_number() ? formatValue(m["value"].get<double>()) : "?");
+    std::string reached = (m["achieved"].is_number() ? formatValue(m["achieved"].get<double>()) : "?") +
+                          (reachable ? "" : " (unreachable)");
+    auto gpu95 = summaryStat(c.summary, "gpu_ms", "p95");
+    auto lod = summaryStat(c.summary, "lod_ms", "median"), draw = summaryStat(c.summary, "draw_ms", "median");
+    out.table.rows.push_back({textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
+                              textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
+                              textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian)
+                                                                              : std::nullopt)),
+                              textCell(formatValue(gpu95)), textCell(formatValue(lod)), textCell(formatValue(draw)),
+                              textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
+                              textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
+                              textCell(formatValue(nonDegenerateMedian(c)))});
+    if (!std::isfinite(r.gpuMedian)) continue;
+    const std::string label = c.scheme + (reachable ? "" : " (unreachable)");
+    if (lod && draw) {
+      data.push_back({{"scheme", label}, {"part", "LOD passes"}, {"ms", *lod}, {"order", r.gpuMedian}});
+      data.push_back({{"scheme", label}, {"part", "draw"}, {"ms", *draw}, {"order", r.gpuMedian}});
+    } else {
+      data.push_back({{"scheme", label}, {"part", "frame (LOD inside the draw)"}, {"ms", r.gpuMedian},
+                      {"order", r.gpuMedian}});
+    }
+    if (gpu95) data.push_back({{"scheme", label}, {"part", "p95"}, {"p95", *gpu95}, {"order", r.gpuMedian}});
+  }
+  Chart& ch = out.chart;
+  ch.id = "equal_error_gpu_ms";
+  ch.section = "equal-error";
+  ch.title = "GPU ms per frame at " + metric + " " + formatValue(target);
+  ch.dataName = "equal_error";
+  ch.data = data;
+  const json y = {{"field", "scheme"}, {"type", "nominal"}, {"title", nullptr},
+                  {"sort", {{"field", "order"}, {"op", "min"}, {"order", "ascending"}}}};
+  ch.spec = {{"$schema", kVegaLiteSchema},
+             {"title", ch.title},
+             {"width", 560},
+             {"data", {{"url", "data/equal_error.json"}}},
+             {"layer",
+              json::array({{{"transform", json::array({{{"filter", "datum.part != 'p95'"}}})},
+                            {"mark", {{"type", "bar"}}},
+                            {"encoding",
+                             {{"y", y},
+                              {"x", {{"field", "ms"}, {"type", "quantitative"}, {"stack", "zero"},
+                                     {"title", "GPU ms/frame, median (bars) and p95 (tick)"}}},
+                              {"color", {{"field", "part"}, {"type", "nominal"}, {"title", "part of the frame"}}},
+                              {"tooltip", json::array({{{"field", "scheme"}}, {{"field", "part"}},
+                                                       {{"field", "ms"}, {"format", ".3f"}}})}}}},
+                           {{"transform", json::array({{{"filter", "datum.part == 'p95'"}}})},
+                            {"mark", {{"type", "tick"}, {"color", "black"}, {"thickness", 2}}},
+                            {"encoding",
+                             {{"y", y},
+                              {"x", {{"field", "p95"}, {"type", "quantitative"}}},
+                              {"tooltip", json::array({{{"field", "scheme"}}, {{"field", "p95"}, {"format", ".3f"}}})}}}}})}};
+  return out;
+}
+
+}  // namespace lb
