@@ -16,6 +16,7 @@
 #include "shaders/shared.h"
 #include "stats.h"
 #include "vk/context.h"
+#include "version.h"
 
 namespace lb {
 
@@ -66,7 +67,7 @@ json runContext(const Context& ctx, const Config& config) {
   gethostname(host, sizeof host - 1);
   return {
       {"tool", "lodbench"},
-      {"tool_version", LODBENCH_VERSION},
+      {"tool_version", kToolVersion},
 #ifdef NDEBUG
       {"build_type", "release"},
 #else
@@ -310,16 +311,23 @@ static const char* const kTimingColumns[] = {
     "frame",           "gpu_ms",           "cpu_ms",          "patches",
     "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"};
 
-std::string framesCsvHeader() {
+std::string framesCsvHeader(const std::vector<std::string>& params) {
   std::string h = "case_id";
   for (const char* c : kTimingColumns) h += std::string(",") + c;
   for (auto& c : metricColumns()) h += "," + c;
+  h += ",scheme";
+  for (auto& p : params) h += ",param_" + p;
   return h + "\n";
 }
 
-std::string framesCsvRows(const json& cj) {
+std::string framesCsvRows(const json& cj, const std::vector<std::string>& params) {
   std::string out;
   std::string id = cj.value("case_id", "");
+  // The case's scheme and parameter values end every row, so the file filters without a join.
+  std::string tail = "," + cj.value("scheme", "");
+  const json noParams = json::object();
+  const json& given = cj.contains("params") && cj["params"].is_object() ? cj["params"] : noParams;
+  for (auto& p : params) tail += "," + (given.contains(p) && !given[p].is_null() ? given[p].dump() : std::string());
   for (const json& f : cj["frames"]) {
     out += id;
     for (const char* c : kTimingColumns) out += "," + (f.contains(c) ? f[c].dump() : std::string());
@@ -331,7 +339,7 @@ std::string framesCsvRows(const json& cj) {
         out += f[c].dump();
       }
     }
-    out += "\n";
+    out += tail + "\n";
   }
   return out;
 }

@@ -1,0 +1,160 @@
+#include "cli/dry_run.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+#include "error.h"
+#include "results/run_dir.h"
+#include "sweep/progress.h"
+#include "sweep/runner.h"
+
+namespace lb {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Bytes per frame record for a config no earlier run can size: the committed CI baseline
+// (results/baseline/ci/r1: 14 cases, 280 frame records, measured on 1 frame in 10) holds 262,536
+// bytes of case files and 47,122 of frames.csv, 1,106 per record. Images are bounded by their raw
+// RGB size. Both are printed as such, never as a measurement of this config.
+constexpr double kBytesPerFrameRecord = 1106;
+
+namespace {
+
+struct Earlier {
+  std::string dir;
+  json run;
+  double bytesPerFrame = -1, bytesPerImage = -1;  // < 0: the folder cannot say
+};
+
+double bytesUnder(const fs::path& dir, int* files = nullptr) {
+  double total = 0;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return 0;
+  for (auto& e : fs::recursive_directory_iterator(dir, ec))
+    if (e.is_regular_file(ec)) {
+      total += double(e.file_size(ec));
+      if (files) ++*files;
+    }
+  return total;
+}
+
+// The newest run folder beside outDir (or in results/<name>/) whose run.json ended with costs.
+Earlier newestEarlierRun(const Config& config, const std::string& outDir) {
+  fs::path folder = outDir.empty() ? fs::path("results") / config.name : fs::path(outDir).lexically_normal().parent_path();
+  Earlier best;
+  std::error_code ec;
+  if (folder.empty() || !fs::is_directory(folder, ec)) return best;
+  std::string bestEnd;
+  for (auto& e : fs::directory_iterator(folder, ec)) {
+    if (e.is_symlink(ec) || !e.is_directory(ec) || !hasRunJson(e.path().string())) continue;  // skip `latest`
+    json rj;
+    try {
+      rj = readRunJson(e.path().string());
+    } catch (const InputError&) {
+      continue;  // not a run of ours: nothing to estimate from
+    }
+    if (!rj.contains("costs") || !rj["costs"].is_object() || !rj.contains("end_time")) continue;
+    std::string end = rj["end_time"].is_string() ? rj["end_time"].get<std::string>() : "";
+    if (end > bestEnd) {
+      bestEnd = end;
+      best = {e.path().string(), rj};
+    }
+  }
+  if (best.dir.empty()) return best;
+  long frames = 0;
+  for (auto& cf : readCaseFiles(best.dir)) frames += long(cf.doc["frames"].size());
+  if (frames > 0)
+    best.bytesPerFrame = (bytesUnder(fs::path(best.dir) / "cases") +
+                          double(fs::exists(best.dir + "/frames.csv", ec) ? fs::file_size(best.dir + "/frames.csv", ec) : 0)) /
+                         double(frames);
+  int images = 0;
+  double imageBytes = bytesUnder(fs::path(best.dir) / "images", &images);
+  if (images > 0) best.bytesPerImage = imageBytes / images;
+  return best;
+}
+
+std::string megabytes(double bytes) {
+  char b[32];
+  std::snprintf(b, sizeof b, bytes < 1e7 ? "%.1f MB" : "%.0f MB", bytes / 1e6);
+  return b;
+}
+
+}  // namespace
+
+int dryRun(const Config& config, const std::string& outDir, int shardIndex, int shardCount, bool shardGiven) {
+  auto cases = shardCases(config, shardIndex, shardCount);
+  for (auto& c : cases) std::printf("%s\n", c.id.c_str());
+  if (!shardGiven)  // no shard asked: nothing to say about shards
+    std::fprintf(stderr, "lodbench: %zu cases\n", cases.size());
+  else
+    std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), shardIndex, shardCount,
+                 expandCases(config).size());
+  std::vector<CaseWork> work = plannedWork(config, cases);
+  if (!outDir.empty() && hasRunJson(outDir)) {  // what a resume of --out would keep
+    json previous = readRunJson(outDir);
+    checkToolVersion(outDir, previous);
+    ResumePlan plan = planResume(outDir, cases);
+    std::fprintf(stderr,
+                 "lodbench: %s exists: %zu finished case(s) kept, %zu changed (refused without --rerun-changed), "
+                 "%zu stale, %zu to run\n",
+                 outDir.c_str(), plan.reuse.size(), plan.changed.size(), plan.stale.size(),
+                 cases.size() - plan.reuse.size());
+    for (size_t i = 0; i < cases.size(); ++i)
+      if (plan.reuse.count(cases[i].id)) work[i] = CaseWork{cases[i].scheme, 0, 0, 0, false};
+  }
+  // Records: the timed frames of each repetition (plannedWork's timing frames less warm-up, per
+  // timing mode). Images: the configured frames and up to 4 worst ones (summary worst_frames) per mode.
+  long frames = 0, images = 0;
+  int modes = 1;
+  for (const std::string& m : config.timing.modes) modes += m != "shaded";
+  const long perCaseImages =
+      long(config.images.frames.size() + (config.images.worst && config.measure.every > 0 ? 4 : 0)) *
+      long(config.images.modes.size());
+  for (auto& w : work) {
+    if (!w.overhead) continue;  // kept
+    frames += w.timingFrames / modes - config.warmupFrames;
+    images += perCaseImages;
+  }
+  Earlier earlier = newestEarlierRun(config, outDir);
+  if (earlier.dir.empty()) {
+    std::fprintf(stderr,
+                 "lodbench: estimated time: no estimate (no earlier run of '%s' with costs in its results folder; "
+                 "the first run records them in run.json \"costs\")\n",
+                 config.name.c_str());
+  } else {
+    EtaEstimator eta;
+    for (auto& [scheme, cost] : earlier.run["costs"].items()) {
+      if (scheme == "terrains" || !cost.is_object()) continue;
+      auto add = [&](const char* key, auto fn) {
+        if (cost.contains(key) && cost[key].is_number()) fn(cost[key].get<double>());
+      };
+      add("timing_s_per_frame", [&](double s) { eta.addTiming(scheme, 1, s); });
+      add("measured_s_per_frame", [&](double s) { eta.addMeasured(scheme, 1, s); });
+      add("case_overhead_s", [&](double s) { eta.addOverhead(scheme, s); });
+    }
+    if (earlier.run.contains("ray_cast_s_per_image") && earlier.run["ray_cast_s_per_image"].is_number())
+      eta.addTruth(1, earlier.run["ray_cast_s_per_image"].get<double>());
+    bool complete = true;
+    double s = eta.remaining(work, complete);
+    std::fprintf(stderr,
+                 "lodbench: estimated time: %s%s (from the costs of %s: per scheme, else their mean; they scale "
+                 "with resolution, grid and device)\n",
+                 complete ? "about " : "at least ", formatDuration(s).c_str(), earlier.dir.c_str());
+  }
+  const bool measured = earlier.bytesPerFrame > 0, imaged = earlier.bytesPerImage > 0;
+  const double imageBytes =
+      double(images) * (imaged ? earlier.bytesPerImage : double(config.images.width) * config.images.height * 3);
+  const double recordBytes = double(frames) * (measured ? earlier.bytesPerFrame : kBytesPerFrameRecord);
+  std::fprintf(stderr,
+               "lodbench: estimated disk: about %s (%ld frame records at %s; %ld images at %s)\n",
+               megabytes(imageBytes + recordBytes).c_str(), frames,
+               measured ? ("the bytes per record of " + earlier.dir).c_str() : "about 1.1 kB each (the CI baseline's)",
+               images,
+               imaged ? ("the mean size in " + earlier.dir).c_str() : "at most their raw RGB size");
+  return 0;
+}
+
+}  // namespace lb
