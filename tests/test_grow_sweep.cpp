@@ -10,7 +10,9 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
+#include "cli_run.h"
 #include "config/config.h"
 #include "error.h"
 #include "report/report.h"
@@ -66,6 +68,14 @@ std::string errorOf(const std::function<void()>& f) {
   } catch (const InputError& e) {
     return e.what();
   }
+  return "";
+}
+
+// The run directory `run` prints on stdout (a line of its own, beside stderr's summary).
+std::string trimmed(const std::string& text) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("results/", 0) == 0) return line;
   return "";
 }
 
@@ -167,8 +177,7 @@ TEST(GrowSweep, FolderOfAnotherToolVersionOrDeviceIsRefused) {
   rj["context"]["tool_version"] = "0.1.0";
   std::ofstream(run / "run.json") << rj.dump(2);
   const std::string e = errorOf([&] { runSweep(config(one + R"(, "sphere")"), at(run, true)); });
-  EXPECT_NE(e.find("written by lodbench 0.1.0, this is lodbench " + std::string(kToolVersion)), std::string::npos)
-      << e;
+  EXPECT_NE(e.find("written by lodbench 0.1.0, this is lodbench " + std::string(kToolVersion)), std::string::npos) << e;
   EXPECT_NE(e.find("run into a new --out"), std::string::npos) << e;
   EXPECT_FALSE(fs::exists(run / "cases" / (kSphere + ".json"))) << "refused before any case ran";
 
@@ -211,17 +220,29 @@ TEST(GrowSweep, CaseRecordsEveryParameterWithItsResolvedValue) {
   EXPECT_EQ(row.substr(row.rfind(",sphere,")), ",sphere,0,," + expected["tri_size"].dump());
 }
 
-TEST(GrowSweep, LatestPointsAtTheNewestRunOfTheResultsFolder) {
-  fs::path folder = fresh("latest") / "grow";  // named after the config, as results/<name>/ is
-  const std::string one = R"({"name": "uniform", "params": {"level": 3}})";
-  runSweep(config(one), at(folder / "first"));
-  ASSERT_TRUE(fs::is_symlink(folder / "latest"));
-  EXPECT_EQ(fs::read_symlink(folder / "latest"), "first");
-  runSweep(config(one), at(folder / "second"));
-  EXPECT_EQ(fs::read_symlink(folder / "latest"), "second");
-  EXPECT_TRUE(fs::exists(folder / "latest" / "run.json"));
-  // Outside a config's results folder nothing is pointed.
-  fs::path other = fresh("latest_other") / "elsewhere" / "run";
-  runSweep(config(one), at(other));
-  EXPECT_FALSE(fs::exists(other.parent_path() / "latest"));
+// `run` without --out writes results/<name>/<utc-time>/ under the working directory: `latest`
+// follows the newest; a folder given with --out (rounds, shards) gets none beside it.
+TEST(GrowSweep, LatestPointsAtTheNewestDefaultRun) {
+  fs::path cwd = fresh("latest");
+  std::ofstream(cwd / "grow.json") << R"({"name": "grow", "resolution": [48, 32], "grid": 4, "fps": 10,
+    "warmup_frames": 0, "max_frames": 2, "terrain": {"type": "procedural", "size": 33, "seed": 5},
+    "paths": [")" + kConfigs + R"(/paths/flyover.csv"], "schemes": [{"name": "uniform", "params": {"level": 3}}]})";
+  const std::string run =
+      "cd '" + cwd.string() + "' && env -u LODBENCH_VALIDATION " + LODBENCH_BINARY + " run grow.json -q";
+  lb::test::CliOut first = lb::test::shell(run);
+  ASSERT_EQ(first.code, 0) << first.text;
+  const fs::path latest = cwd / "results" / "grow" / "latest";
+  ASSERT_TRUE(fs::is_symlink(latest));
+  const fs::path firstId = fs::read_symlink(latest);
+  EXPECT_EQ((cwd / trimmed(first.text)).lexically_normal(), (cwd / "results" / "grow" / firstId).lexically_normal());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // run ids are UTC seconds
+  lb::test::CliOut second = lb::test::shell(run);
+  ASSERT_EQ(second.code, 0) << second.text;
+  EXPECT_NE(fs::read_symlink(latest), firstId);
+  EXPECT_EQ(fs::read_symlink(latest), fs::path(trimmed(second.text)).filename());
+  EXPECT_TRUE(fs::exists(latest / "run.json"));
+
+  fs::path rounds = fresh("latest_rounds") / "grow";
+  runSweep(config(R"({"name": "uniform", "params": {"level": 3}})"), at(rounds / "r1"));
+  EXPECT_FALSE(fs::exists(rounds / "latest"));
 }

@@ -18,8 +18,8 @@ const std::string kSrc = LODBENCH_SOURCE_DIR;
 const std::set<std::string> kNeeds = {"gpu", "dem", "long", "cluster", "gdal", "setup"};
 
 struct Command {
-  int line = 0;      // README line where it starts
-  std::string text;  // continuation lines joined, without its comment
+  int line = 0;       // README line where it starts
+  std::string text;   // continuation lines joined, without its comment
   std::string needs;  // the word after "# needs: ", "" when unmarked
 };
 

@@ -43,7 +43,8 @@ double bytesUnder(const fs::path& dir, int* files = nullptr) {
 
 // The newest run folder beside outDir (or in results/<name>/) whose run.json ended with costs.
 Earlier newestEarlierRun(const Config& config, const std::string& outDir) {
-  fs::path folder = outDir.empty() ? fs::path("results") / config.name : fs::path(outDir).lexically_normal().parent_path();
+  fs::path folder =
+      outDir.empty() ? fs::path("results") / config.name : fs::path(outDir).lexically_normal().parent_path();
   Earlier best;
   std::error_code ec;
   if (folder.empty() || !fs::is_directory(folder, ec)) return best;
@@ -67,9 +68,10 @@ Earlier newestEarlierRun(const Config& config, const std::string& outDir) {
   long frames = 0;
   for (auto& cf : readCaseFiles(best.dir)) frames += long(cf.doc["frames"].size());
   if (frames > 0)
-    best.bytesPerFrame = (bytesUnder(fs::path(best.dir) / "cases") +
-                          double(fs::exists(best.dir + "/frames.csv", ec) ? fs::file_size(best.dir + "/frames.csv", ec) : 0)) /
-                         double(frames);
+    best.bytesPerFrame =
+        (bytesUnder(fs::path(best.dir) / "cases") +
+         double(fs::exists(best.dir + "/frames.csv", ec) ? fs::file_size(best.dir + "/frames.csv", ec) : 0)) /
+        double(frames);
   int images = 0;
   double imageBytes = bytesUnder(fs::path(best.dir) / "images", &images);
   if (images > 0) best.bytesPerImage = imageBytes / images;
@@ -148,12 +150,10 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
   const double imageBytes =
       double(images) * (imaged ? earlier.bytesPerImage : double(config.images.width) * config.images.height * 3);
   const double recordBytes = double(frames) * (measured ? earlier.bytesPerFrame : kBytesPerFrameRecord);
-  std::fprintf(stderr,
-               "lodbench: estimated disk: about %s (%ld frame records at %s; %ld images at %s)\n",
+  std::fprintf(stderr, "lodbench: estimated disk: about %s (%ld frame records at %s; %ld images at %s)\n",
                megabytes(imageBytes + recordBytes).c_str(), frames,
                measured ? ("the bytes per record of " + earlier.dir).c_str() : "about 1.1 kB each (the CI baseline's)",
-               images,
-               imaged ? ("the mean size in " + earlier.dir).c_str() : "at most their raw RGB size");
+               images, imaged ? ("the mean size in " + earlier.dir).c_str() : "at most their raw RGB size");
   return 0;
 }
 

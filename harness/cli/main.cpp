@@ -31,8 +31,8 @@
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_shape.h"
-#include "vk/context.h"
 #include "version.h"
+#include "vk/context.h"
 
 using namespace lb;
 

@@ -191,8 +191,7 @@ std::string verdictMarkdown(const CompareReport& r) {
   for (auto& c : r.cases)
     if (c.timing.verdict == TimingVerdict::NotChecked) reasons[rowReason(c)]++;
   for (auto& [why, n] : reasons)
-    if (n > 1)
-      m << "**NO VERDICT** for " << n << " of " << r.cases.size() << " cases: " << why << ".\n\n";
+    if (n > 1) m << "**NO VERDICT** for " << n << " of " << r.cases.size() << " cases: " << why << ".\n\n";
   m << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
     << "% interval] | p | rounds | frames | verdict |\n"
     << "|---|---|---|---|---|---|---|---|\n";

@@ -17,7 +17,8 @@ static std::string fileDigest(const std::string& file, FileDigests& files) {
 }
 
 json terrainInputs(const TerrainSpec& t, FileDigests& files) {
-  json j = {{"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}, {"origin", {t.originX, t.originZ}}};
+  json j = {
+      {"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}, {"origin", {t.originX, t.originZ}}};
   if (t.type == "procedural" || isGeneratedTerrain(t.type)) {
     j["size"] = t.size;
     j["seed"] = t.seed;
@@ -56,9 +57,9 @@ json measurementInputs(const Config& c) {
   // Since a config that grows resumes its folder (only the digests guard it), every setting that
   // shapes a case's records is here, defaults included.
   if (c.timing.calibrate)
-    j["timing"]["calibration"] = {{"level", c.timing.level},         {"frames", c.timing.frames},
-                                  {"max_tries", c.timing.maxTries},  {"tolerance", c.timing.tolerance},
-                                  {"drift_limit", c.timing.driftLimit}, {"min_load_s", c.timing.minLoadS}};
+    j["timing"]["calibration"] = {
+        {"level", c.timing.level},         {"frames", c.timing.frames},          {"max_tries", c.timing.maxTries},
+        {"tolerance", c.timing.tolerance}, {"drift_limit", c.timing.driftLimit}, {"min_load_s", c.timing.minLoadS}};
   if (c.match.on())
     j["match"] = {{"metric", c.match.metric},
                   {"value", c.match.value},
@@ -71,12 +72,8 @@ json measurementInputs(const Config& c) {
 
 json caseInputs(const json& terrain, const json& path, int width, int height, const std::string& scheme,
                 const json& params, const json& measurement) {
-  return {{"tool_version", kToolVersion},
-          {"scheme", scheme},
-          {"params", params},
-          {"terrain", terrain},
-          {"path", path},
-          {"resolution", {width, height}},
+  return {{"tool_version", kToolVersion}, {"scheme", scheme}, {"params", params},
+          {"terrain", terrain},           {"path", path},     {"resolution", {width, height}},
           {"measurement", measurement}};
 }
 

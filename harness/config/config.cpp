@@ -183,9 +183,7 @@ static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::
     if (s.contains("params")) params = s["params"];
   }
   const Scheme* scheme = findScheme(e.name);
-  if (!scheme)
-    r.fail(ptr + (s.is_string() ? "" : "/name"),
-           unknownSchemeText(printable(e.name)));
+  if (!scheme) r.fail(ptr + (s.is_string() ? "" : "/name"), unknownSchemeText(printable(e.name)));
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
   e.variants = {ParamValues{}};
@@ -377,7 +375,7 @@ std::vector<Case> expandCases(const Config& config) {
           for (auto& v : variants) {
             const TerrainSpec& t = config.terrains[ti];
             const std::string& path = config.paths[pi];
-            Case c{"", v.scheme, v.params, t, labels[ti], path, res.first, res.second};
+            Case c{"", v.scheme, v.params, v.params, t, labels[ti], path, res.first, res.second};
             c.id = v.scheme;
             for (auto& [k, val] : v.params) c.id += "-" + k + formatNumber(val);
             c.id += "_" + c.terrainLabel + "_" + fileStem(path) + "_" + std::to_string(res.first) + "x" +

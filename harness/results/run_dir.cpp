@@ -100,6 +100,7 @@ void writeAggregates(const std::string& dir, const json& context) {
     cases.push_back({{"case_id", cj["case_id"]},
                      {"scheme", field("scheme")},
                      {"params", field("params")},
+                     {"params_listed", field("params_listed")},
                      {"terrain", terrain.is_object() && terrain.contains("label") ? terrain["label"] : terrain},
                      {"path", field("path")},
                      {"resolution", field("resolution")},

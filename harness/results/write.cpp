@@ -15,8 +15,8 @@
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
-#include "vk/context.h"
 #include "version.h"
+#include "vk/context.h"
 
 namespace lb {
 
@@ -272,15 +272,18 @@ json caseJson(const Case& c, const CaseResult& r) {
     }
     frames.push_back(rec);
   }
-  json params = json::object();
+  json params = json::object(), listed = json::object();
   for (auto& [k, v] : c.params) params[k] = v;
-  if (r.matched.is_object() && !r.matched.value("param", "").empty()) params[r.matched["param"]] = r.matched["value"];
+  for (auto& [k, v] : c.listedParams) listed[k] = v;
+  if (r.matched.is_object() && !r.matched.value("param", "").empty())
+    params[r.matched["param"]] = listed[r.matched["param"]] = r.matched["value"];
   return {{"schema_version", kSchemaVersion},
           {"case_id", c.id},
           {"digest", c.digest},
           {"inputs", c.inputs},
           {"scheme", c.scheme},
           {"params", params},
+          {"params_listed", listed},
           {"terrain",
            {{"type", c.terrain.type},
             {"label", c.terrainLabel},

@@ -10,12 +10,11 @@ namespace lb {
 
 namespace fs = std::filesystem;
 
-void pointLatestAt(const std::string& runDir, const std::string& configName, bool defaultDir) {
+void pointLatestAt(const std::string& runDir) {
   fs::path run = fs::path(runDir).lexically_normal();
   if (run.filename().empty()) run = run.parent_path();  // "dir/" -> "dir"
   const fs::path parent = run.parent_path();
   if (parent.empty() || run.filename() == "latest") return;
-  if (!defaultDir && parent.filename() != configName) return;
   const fs::path link = parent / "latest";
   std::error_code ec;
   if (fs::is_directory(fs::symlink_status(link, ec))) {

@@ -6,10 +6,11 @@
 namespace lb {
 
 // Points <parent of runDir>/latest at runDir (a relative symlink; where symlinks cannot be made, a
-// file holding the run's folder name). Only in a config's results folder: when runDir is the
-// default results/<name>/<run-id> (defaultDir) or its parent folder is named after the config, so
-// `--out /tmp/x` leaves /tmp alone. A `latest` that is a real directory is left as it is. Never
-// fails the run: a problem is one line on stderr.
-void pointLatestAt(const std::string& runDir, const std::string& configName, bool defaultDir);
+// file holding the run's folder name). Only for the default run folder results/<name>/<run-id>:
+// a folder given with --out is the caller's to name, and folders of rounds or shards
+// (results/baseline/ci/r1, r2, ...) must not gain an extra run directory that readers of every
+// subfolder would count twice. A `latest` that is a real directory is left as it is. Never fails
+// the run: a problem is one line on stderr.
+void pointLatestAt(const std::string& runDir);
 
 }  // namespace lb

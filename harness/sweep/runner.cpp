@@ -88,12 +88,12 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   fs::create_directories(totals.dir + "/cases");
   fs::create_directories(totals.dir + "/images");
   removeStaleTemps(totals.dir);
-  pointLatestAt(totals.dir, config.name, options.outDir.empty());
+  if (options.outDir.empty()) pointLatestAt(totals.dir);
   std::vector<std::string> ids;
   for (auto& c : cases) ids.push_back(c.id);
   json run = startedRunJson(context, options.shardIndex, options.shardCount, ids, previous);
   run["stale_cases"] = plan.stale;  // on disk, out of the run: readCaseFiles leaves them out
-  if (previous.contains("costs")) run["costs"] = previous["costs"];  // until this invocation's end
+  if (previous.contains("costs")) run["costs"] = previous["costs"];         // until this invocation's end
   if (config.testSlowdown > 0) run["test_slowdown"] = config.testSlowdown;  // so no one mistakes it for data
   if (const char* off = std::getenv("LODBENCH_TEST_DISABLE"))  // features a test switched off (vk/context.cpp)
     run["test_disabled_features"] = off;
