@@ -15,6 +15,7 @@
 #include "cli_run.h"
 #include "config/config.h"
 #include "error.h"
+#include "number_text.h"
 #include "report/report.h"
 #include "results/run_dir.h"
 #include "schemes/registry.h"
@@ -217,7 +218,7 @@ TEST(GrowSweep, CaseRecordsEveryParameterWithItsResolvedValue) {
   EXPECT_EQ(header.substr(header.find(",scheme,")), ",scheme,param_integer,param_level,param_tri_size");
   std::getline(csv, row);
   EXPECT_EQ(row.substr(0, row.find(',')), kSphere);
-  EXPECT_EQ(row.substr(row.rfind(",sphere,")), ",sphere,0,," + expected["tri_size"].dump());
+  EXPECT_EQ(row.substr(row.rfind(",sphere,")), ",sphere,0,," + numberText(expected["tri_size"].get<double>()));
 }
 
 // `run` without --out writes results/<name>/<utc-time>/ under the working directory: `latest`

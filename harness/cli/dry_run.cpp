@@ -78,9 +78,14 @@ Earlier newestEarlierRun(const Config& config, const std::string& outDir) {
   return best;
 }
 
-std::string megabytes(double bytes) {
+std::string byteText(double bytes) {
   char b[32];
-  std::snprintf(b, sizeof b, bytes < 1e7 ? "%.1f MB" : "%.0f MB", bytes / 1e6);
+  if (bytes < 1e6)
+    std::snprintf(b, sizeof b, "%.1f kB", bytes / 1e3);
+  else if (bytes < 1e9)
+    std::snprintf(b, sizeof b, "%.1f MB", bytes / 1e6);
+  else
+    std::snprintf(b, sizeof b, "%.2f GB", bytes / 1e9);
   return b;
 }
 
@@ -151,7 +156,7 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
       double(images) * (imaged ? earlier.bytesPerImage : double(config.images.width) * config.images.height * 3);
   const double recordBytes = double(frames) * (measured ? earlier.bytesPerFrame : kBytesPerFrameRecord);
   std::fprintf(stderr, "lodbench: estimated disk: about %s (%ld frame records at %s; %ld images at %s)\n",
-               megabytes(imageBytes + recordBytes).c_str(), frames,
+               byteText(imageBytes + recordBytes).c_str(), frames,
                measured ? ("the bytes per record of " + earlier.dir).c_str() : "about 1.1 kB each (the CI baseline's)",
                images, imaged ? ("the mean size in " + earlier.dir).c_str() : "at most their raw RGB size");
   return 0;

@@ -185,13 +185,17 @@ std::string verdictMarkdown(const CompareReport& r) {
   }
 
   m << "\n## GPU time (medians of the rounds' median ms)\n\n";
-  // A reason many rows share (too few rounds, typically every case) is said once above the table.
+  // A reason many rows share (too few rounds, typically every case) is said once: in NOT CHECKED
+  // when it is there already, else above the table; the rows point to it.
   auto rowReason = [](const CaseComparison& c) { return c.statusNote.empty() ? c.timing.reason : c.statusNote; };
   std::map<std::string, int> reasons;
   for (auto& c : r.cases)
     if (c.timing.verdict == TimingVerdict::NotChecked) reasons[rowReason(c)]++;
-  for (auto& [why, n] : reasons)
-    if (n > 1) m << "**NO VERDICT** for " << n << " of " << r.cases.size() << " cases: " << why << ".\n\n";
+  for (auto& [why, n] : reasons) {
+    bool said = false;
+    for (auto& note : r.notChecked) said = said || note.find(why) != std::string::npos;
+    if (n > 1 && !said) m << "**NO VERDICT** for " << n << " of " << r.cases.size() << " cases: " << why << ".\n\n";
+  }
   m << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
     << "% interval] | p | rounds | frames | verdict |\n"
     << "|---|---|---|---|---|---|---|---|\n";
@@ -206,7 +210,7 @@ std::string verdictMarkdown(const CompareReport& r) {
       else
         m << "- | - | -";
       m << " | - | " << rounds << " | " << t.nBaseline << " / " << t.nCandidate << " | "
-        << (reasons[rowReason(c)] > 1 ? "no verdict (above)" : "NO VERDICT: " + rowReason(c)) << " |\n";
+        << (reasons[rowReason(c)] > 1 ? "no verdict (the reason above)" : "NO VERDICT: " + rowReason(c)) << " |\n";
       continue;
     }
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | **" << num(t.ratio, "%.3f") << "x** ["

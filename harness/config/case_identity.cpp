@@ -99,11 +99,11 @@ static void diff(const json& a, const json& b, const std::string& at, std::strin
   }
   std::string name = at;
   if (name.size() > 7 && name.compare(name.size() - 7, 7, ".sha256") == 0)
-    name = name.substr(0, name.size() - 7) + " file contents (sha256";
+    name = name.substr(0, name.size() - 7) + " file contents (sha256 ";
   else
     name += " (";
   if (!out.empty()) out += "; ";
-  out += name + " " + (a.is_null() ? "absent" : brief(a)) + " -> " + (b.is_null() ? "absent" : brief(b)) + ")";
+  out += name + (a.is_null() ? "absent" : brief(a)) + " -> " + (b.is_null() ? "absent" : brief(b)) + ")";
 }
 
 std::string describeInputChange(const json& recorded, const json& now) {

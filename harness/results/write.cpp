@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "config/config.h"
+#include "number_text.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
@@ -330,7 +331,8 @@ std::string framesCsvRows(const json& cj, const std::vector<std::string>& params
   std::string tail = "," + cj.value("scheme", "");
   const json noParams = json::object();
   const json& given = cj.contains("params") && cj["params"].is_object() ? cj["params"] : noParams;
-  for (auto& p : params) tail += "," + (given.contains(p) && !given[p].is_null() ? given[p].dump() : std::string());
+  for (auto& p : params)
+    tail += "," + (given.contains(p) && given[p].is_number() ? numberText(given[p].get<double>()) : std::string());
   for (const json& f : cj["frames"]) {
     out += id;
     for (const char* c : kTimingColumns) out += "," + (f.contains(c) ? f[c].dump() : std::string());
