@@ -94,7 +94,8 @@ std::string byteText(double bytes) {
 int dryRun(const Config& config, const std::string& outDir, int shardIndex, int shardCount, bool shardGiven) {
   auto cases = shardCases(config, shardIndex, shardCount);
   for (auto& c : cases) std::printf("%s\n", c.id.c_str());
-  if (!shardGiven)  // no shard asked: nothing to say about shards
+  std::fflush(stdout);  // the ids first, then the totals on stderr, also through a pipe
+  if (!shardGiven)      // no shard asked: nothing to say about shards
     std::fprintf(stderr, "lodbench: %zu cases\n", cases.size());
   else
     std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), shardIndex, shardCount,
@@ -152,13 +153,19 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
                  complete ? "about " : "at least ", formatDuration(s).c_str(), earlier.dir.c_str());
   }
   const bool measured = earlier.bytesPerFrame > 0, imaged = earlier.bytesPerImage > 0;
+  const double recordBytes = double(frames) * (measured ? earlier.bytesPerFrame : kBytesPerFrameRecord);
   const double imageBytes =
       double(images) * (imaged ? earlier.bytesPerImage : double(config.images.width) * config.images.height * 3);
-  const double recordBytes = double(frames) * (measured ? earlier.bytesPerFrame : kBytesPerFrameRecord);
-  std::fprintf(stderr, "lodbench: estimated disk: about %s (%ld frame records at %s; %ld images at %s)\n",
-               byteText(imageBytes + recordBytes).c_str(), frames,
-               measured ? ("the bytes per record of " + earlier.dir).c_str() : "about 1.1 kB each (the CI baseline's)",
-               images, imaged ? ("the mean size in " + earlier.dir).c_str() : "at most their raw RGB size");
+  const std::string perRecord =
+      measured ? "the bytes per record of " + earlier.dir : std::string("about 1.1 kB each, the CI baseline's");
+  const std::string perImage =
+      imaged ? "the mean image size of " + earlier.dir : std::string("their raw RGB size, an upper bound");
+  // Worst frames often coincide with configured ones or each other: the image count is a ceiling.
+  std::fprintf(stderr,
+               "lodbench: estimated disk: about %s of frame records (%ld records at %s) and at most %s of images "
+               "(up to %ld: configured and worst frames x modes, at %s)\n",
+               byteText(recordBytes).c_str(), frames, perRecord.c_str(), byteText(imageBytes).c_str(), images,
+               perImage.c_str());
   return 0;
 }
 
