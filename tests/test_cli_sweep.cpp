@@ -52,7 +52,7 @@ TEST(CliSweep, DryRunCountsAndEstimatesFromAnEarlierRunOfItsFolder) {
   EXPECT_NE(o.text.find("lodbench: 2 cases\n"), std::string::npos) << o.text;
   EXPECT_NE(o.text.find("estimated time: no estimate (no earlier run of 'dry'"), std::string::npos) << o.text;
   // 2 cases x 3 frames, no images; bytes per record the CI baseline's without an earlier run.
-  EXPECT_NE(o.text.find("estimated disk: about 6.6 kB of frame records (6 records at about 1.1 kB each"),
+  EXPECT_NE(o.text.find("estimated disk: about 10.2 kB of records and summaries (6 frame records at about 1.7 kB each"),
             std::string::npos)
       << o.text;
   EXPECT_FALSE(fs::exists(d / "results")) << "a dry run writes nothing";
@@ -63,7 +63,7 @@ TEST(CliSweep, DryRunCountsAndEstimatesFromAnEarlierRunOfItsFolder) {
   ASSERT_EQ(o.code, 0) << o.text;
   EXPECT_NE(o.text.find("estimated time: about "), std::string::npos) << o.text;
   EXPECT_NE(o.text.find("from the costs of results/dry/first"), std::string::npos) << o.text;
-  EXPECT_NE(o.text.find("(6 records at the bytes per record of results/dry/first)"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("(6 frame records at the bytes per record of results/dry/first)"), std::string::npos) << o.text;
 
   // Against the finished folder: everything kept, nothing to run. With a scheme more: one to run.
   writeConfig(d / "dry.json", R"({"name": "uniform", "params": {"level": 3}}, "sphere", "distance")");
@@ -73,7 +73,7 @@ TEST(CliSweep, DryRunCountsAndEstimatesFromAnEarlierRunOfItsFolder) {
                         "--rerun-changed), 0 stale, 1 to run"),
             std::string::npos)
       << o.text;
-  EXPECT_NE(o.text.find("(3 records at"), std::string::npos) << "only the new case's records: " << o.text;
+  EXPECT_NE(o.text.find("(3 frame records at"), std::string::npos) << "only the new case's records: " << o.text;
 }
 
 TEST(CliSweep, MistypedNamesGetTheNearestKnownOne) {

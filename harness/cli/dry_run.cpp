@@ -15,11 +15,12 @@ namespace lb {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Bytes per frame record for a config no earlier run can size: the committed CI baseline
-// (results/baseline/ci/r1: 14 cases, 280 frame records, measured on 1 frame in 10) holds 262,536
-// bytes of case files and 47,122 of frames.csv, 1,106 per record. Images are bounded by their raw
-// RGB size. Both are printed as such, never as a measurement of this config.
-constexpr double kBytesPerFrameRecord = 1106;
+// Bytes of a run folder, images aside, per frame record, for a config no earlier run can size: the
+// committed CI baseline (results/baseline/ci/r1: 14 cases, 280 frame records, measured on 1 frame
+// in 10; case files, frames.csv, summary.json, gbench.json, run.json) holds 474,090 bytes, 1,693
+// per record. Images are bounded by their raw RGB size. Both are printed as such, never as a
+// measurement of this config.
+constexpr double kBytesPerFrameRecord = 1693;
 
 namespace {
 
@@ -67,13 +68,12 @@ Earlier newestEarlierRun(const Config& config, const std::string& outDir) {
   if (best.dir.empty()) return best;
   long frames = 0;
   for (auto& cf : readCaseFiles(best.dir)) frames += long(cf.doc["frames"].size());
-  if (frames > 0)
-    best.bytesPerFrame =
-        (bytesUnder(fs::path(best.dir) / "cases") +
-         double(fs::exists(best.dir + "/frames.csv", ec) ? fs::file_size(best.dir + "/frames.csv", ec) : 0)) /
-        double(frames);
   int images = 0;
   double imageBytes = bytesUnder(fs::path(best.dir) / "images", &images);
+  // Everything `run` wrote but the images (case files, frames.csv, summaries, the truth cache)
+  // grows with the records; a report made later is not the run's.
+  const double report = bytesUnder(fs::path(best.dir) / "report");
+  if (frames > 0) best.bytesPerFrame = (bytesUnder(best.dir) - imageBytes - report) / double(frames);
   if (images > 0) best.bytesPerImage = imageBytes / images;
   return best;
 }
@@ -157,15 +157,15 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
   const double imageBytes =
       double(images) * (imaged ? earlier.bytesPerImage : double(config.images.width) * config.images.height * 3);
   const std::string perRecord =
-      measured ? "the bytes per record of " + earlier.dir : std::string("about 1.1 kB each, the CI baseline's");
+      measured ? "the bytes per record of " + earlier.dir : std::string("about 1.7 kB each, the CI baseline's");
   const std::string perImage =
       imaged ? "the mean image size of " + earlier.dir : std::string("their raw RGB size, an upper bound");
   // Worst frames often coincide with configured ones or each other: the image count is a ceiling.
-  std::fprintf(stderr,
-               "lodbench: estimated disk: about %s of frame records (%ld records at %s) and at most %s of images "
-               "(up to %ld: configured and worst frames x modes, at %s)\n",
-               byteText(recordBytes).c_str(), frames, perRecord.c_str(), byteText(imageBytes).c_str(), images,
-               perImage.c_str());
+  std::fprintf(
+      stderr,
+      "lodbench: estimated disk: about %s of records and summaries (%ld frame records at %s) and at most %s of images "
+      "(up to %ld: configured and worst frames x modes, at %s)\n",
+      byteText(recordBytes).c_str(), frames, perRecord.c_str(), byteText(imageBytes).c_str(), images, perImage.c_str());
   return 0;
 }
 
