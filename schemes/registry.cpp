@@ -1,5 +1,7 @@
 #include "schemes/registry.h"
 
+#include "did_you_mean.h"
+
 namespace lb {
 
 // Each scheme file defines one factory; adding a scheme = one line here.
@@ -46,6 +48,12 @@ std::string schemeNames() {
   std::string out;
   for (const Scheme* s : allSchemes()) out += (out.empty() ? "" : ", ") + s->info().name;
   return out;
+}
+
+std::string unknownSchemeText(const std::string& name) {
+  std::vector<std::string> names;
+  for (const Scheme* s : allSchemes()) names.push_back(s->info().name);
+  return "unknown scheme '" + name + "' (known: " + schemeNames() + ")" + didYouMean(name, names);
 }
 
 }  // namespace lb

@@ -12,6 +12,8 @@ const std::vector<const Scheme*>& allSchemes();
 // nullptr when unknown.
 const Scheme* findScheme(const std::string& name);
 std::string schemeNames();  // "a, b, c" for error messages
+// "unknown scheme 'sphre' (known: a, b, c); did you mean 'sphere'?" (the suggestion when one is close).
+std::string unknownSchemeText(const std::string& name);
 // The first registered scheme whose main parameter plays `role`; nullptr when none does.
 const Scheme* schemeWithRole(MainParamRole role);
 

@@ -17,17 +17,21 @@ struct CliOut {
   std::string text;
 };
 
-// timing = true leaves the validation layer off (ctest turns it on for everything): its CPU work
-// competes with lavapipe's threads and would blur the figures.
-inline CliOut lodbench(const std::string& args, bool timing = true) {
-  std::string cmd = std::string(timing ? "env -u LODBENCH_VALIDATION " : "") + LODBENCH_BINARY + " " + args + " 2>&1";
+// A shell command line: exit code and combined output.
+inline CliOut shell(const std::string& cmd) {
   CliOut o;
-  FILE* p = popen(cmd.c_str(), "r");
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
   std::array<char, 4096> buf{};
   while (fgets(buf.data(), int(buf.size()), p)) o.text += buf.data();
   int status = pclose(p);
   o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return o;
+}
+
+// timing = true leaves the validation layer off (ctest turns it on for everything): its CPU work
+// competes with lavapipe's threads and would blur the figures.
+inline CliOut lodbench(const std::string& args, bool timing = true) {
+  return shell(std::string(timing ? "env -u LODBENCH_VALIDATION " : "") + LODBENCH_BINARY + " " + args);
 }
 
 inline const std::string kTinyConfig = std::string(LODBENCH_SOURCE_DIR) + "/tests/configs/tiny.json";

@@ -19,6 +19,7 @@
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
 #include "terrain/terrain_cache.h"
+#include "version.h"
 
 namespace lb {
 namespace {
@@ -159,7 +160,7 @@ int loadBenchCommand(const LoadBenchOptions& o) {
   if (o.threads > 0) setenv("LODBENCH_THREADS", std::to_string(o.threads).c_str(), 1);
   const bool perStagePeak = resetPeak();
   json out = {{"tool", "lodbench"},
-              {"tool_version", LODBENCH_VERSION},
+              {"tool_version", kToolVersion},
               {"git_commit", gitCommit()},
               {"time", isoTimeUtc()},
               {"config_file", o.config},
@@ -200,7 +201,7 @@ int loadBenchCommand(const LoadBenchOptions& o) {
     nm = NormalMap();
     for (const SchemeEntry& e : config.schemes) {
       const Scheme* scheme = findScheme(e.name);
-      if (!scheme) throw InputError("load-bench: unknown scheme '" + e.name + "' (" + schemeNames() + ")");
+      if (!scheme) throw InputError("load-bench: " + unknownSchemeText(e.name));
       const ParamValues params = resolveParams(scheme->info(), e.variants.empty() ? ParamValues{} : e.variants[0]);
       SchemeOutput so;
       bool any = false;

@@ -10,11 +10,13 @@
 #include <memory>
 
 #include "camera/camera_path.h"
+#include "cli/dry_run.h"
 #include "cli/list.h"
 #include "cli/load_bench.h"
 #include "cli/probe_command.h"
 #include "compare/commands.h"
 #include "config/config.h"
+#include "did_you_mean.h"
 #include "error.h"
 #include "metrics/cracks.h"
 #include "number_text.h"
@@ -29,6 +31,7 @@
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_shape.h"
+#include "version.h"
 #include "vk/context.h"
 
 using namespace lb;
@@ -41,6 +44,10 @@ static int listSchemes() {
 static int listDevicesCmd() {
   for (auto& d : listDevices()) {
     std::printf("[%d] %s: %s\n", d.index, d.name.c_str(), d.suitable ? "suitable" : d.rejectReason.c_str());
+    if (d.cpu)  // its timings measure the host's cores, not a GPU
+      std::printf(
+          "    CPU software rasterizer (VK_PHYSICAL_DEVICE_TYPE_CPU): counters are exact, timings are of this "
+          "machine's CPU cores, not of a GPU\n");
     const DeviceLimits& l = d.limits;
     const int side = largestSquareTerrain(l);
     std::printf(
@@ -118,7 +125,7 @@ static void checkOutputFile(const std::string& path, const char* flag) {
 
 static int renderCmd(const RenderArgs& a) {
   const Scheme* scheme = findScheme(a.scheme);
-  if (!scheme) throw InputError("--scheme: unknown scheme '" + a.scheme + "' (known: " + schemeNames() + ")");
+  if (!scheme) throw InputError("--scheme: " + unknownSchemeText(printable(a.scheme)));
   ParamValues given;
   for (auto& kv : a.params) {
     auto eq = kv.find('=');
@@ -195,7 +202,7 @@ static CLI::Validator finite(double lo, double hi) {
 int main(int argc, char** argv) {
   CLI::App app{"lodbench: compare GPU terrain level-of-detail schemes on one Vulkan tessellation renderer"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", LODBENCH_VERSION);
+  app.set_version_flag("--version", kToolVersion);
 
   auto* list = app.add_subcommand("list", "List LOD schemes with their parameters, defaults and ranges");
   auto* devices = app.add_subcommand("devices", "List Vulkan devices and why each is or is not suitable");
@@ -206,14 +213,17 @@ int main(int argc, char** argv) {
   std::string runDevice;
   bool quiet = false;
   run->add_option("config", configFile, "Config file (JSON), e.g. configs/quick.json")->required();
-  run->add_option("--out", ro.outDir, "Run directory (an existing one is resumed: finished cases are skipped)");
+  run->add_option("--out", ro.outDir,
+                  "Run directory (an existing one is resumed or grown: finished cases with unchanged inputs are kept, "
+                  "new cases run)");
   run->add_option("--device", runDevice, "Vulkan device: name substring or index (overrides the config)");
   run->add_flag("--validation", ro.validation, "Enable the Vulkan validation layer");
   run->add_flag("-q,--quiet", quiet, "No progress output");
   std::string shard;
   bool dryRun = false;
   run->add_option("--shard", shard, "Run the deterministic subset i/n of the cases (case index % n == i)");
-  run->add_flag("--dry-run", dryRun, "List the cases (of this shard) and exit");
+  run->add_flag("--dry-run", dryRun,
+                "List the cases (of this shard) with their count, estimated time and disk, and exit; opens no device");
   run->add_flag("--rerun-changed", ro.rerunChanged,
                 "Resume: rerun finished cases whose inputs (files, settings) changed instead of refusing");
 
@@ -377,15 +387,17 @@ int main(int argc, char** argv) {
   }
   if (argv[1][0] != '-') {
     std::string known;
+    std::vector<std::string> names;
     bool found = false;
     const CLI::App& constApp = app;  // the const overload lists every subcommand, parsed or not
     for (const CLI::App* sub : constApp.get_subcommands([](const CLI::App*) { return true; })) {
       known += (known.empty() ? "" : ", ") + sub->get_name();
+      names.push_back(sub->get_name());
       found = found || sub->get_name() == argv[1];
     }
     if (!found) {
-      std::fprintf(stderr, "lodbench: error: unknown subcommand '%s' (known: %s; see lodbench --help)\n",
-                   printable(argv[1]).c_str(), known.c_str());
+      std::fprintf(stderr, "lodbench: error: unknown subcommand '%s' (known: %s; see lodbench --help)%s\n",
+                   printable(argv[1]).c_str(), known.c_str(), didYouMean(argv[1], names).c_str());
       return 2;
     }
   }
@@ -423,16 +435,7 @@ int main(int argc, char** argv) {
       if (!runDevice.empty()) config.device = runDevice;
       config.testSlowdown = testSlowdown;
       if (!shard.empty()) parseShard(shard, ro.shardIndex, ro.shardCount);
-      if (dryRun) {
-        auto cases = shardCases(config, ro.shardIndex, ro.shardCount);
-        for (auto& c : cases) std::printf("%s\n", c.id.c_str());
-        if (shard.empty())  // no shard asked: nothing to say about shards
-          std::fprintf(stderr, "lodbench: %zu cases\n", cases.size());
-        else
-          std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), ro.shardIndex, ro.shardCount,
-                       expandCases(config).size());
-        return 0;
-      }
+      if (dryRun) return lb::dryRun(config, ro.outDir, ro.shardIndex, ro.shardCount, !shard.empty());
       ro.progress = !quiet;
       // An unmatched --device (or a missing validation layer) must fail before runSweep creates the run directory.
       checkContextOptions({config.device, ro.validation});

@@ -48,7 +48,8 @@ std::vector<RunData> loadRounds(const std::string& dir) {
   if (hasRunJson(dir) || !fs::is_directory(dir)) return {loadRun(dir)};
   std::vector<std::string> rounds;
   for (auto& e : fs::directory_iterator(dir))
-    if (e.is_directory() && hasRunJson(e.path().string())) rounds.push_back(e.path().string());
+    if (e.is_directory() && !e.is_symlink() && hasRunJson(e.path().string()))  // not `latest`: no round twice
+      rounds.push_back(e.path().string());
   if (rounds.empty())
     throw InputError(dir + ": neither a run directory (run.json) nor a folder of rounds (*/run.json)");
   // r1, r2, ..., r10 in numeric order.

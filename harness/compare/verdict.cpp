@@ -1,10 +1,12 @@
 #include "compare/verdict.h"
 
 #include <cstdio>
+#include <map>
 #include <sstream>
 #include <tuple>
 
 #include "results/write.h"
+#include "version.h"
 
 namespace lb {
 
@@ -116,7 +118,7 @@ json verdictJson(const CompareReport& r) {
   }
   return {{"schema_version", kVerdictSchemaVersion},
           {"tool", "lodbench compare"},
-          {"tool_version", LODBENCH_VERSION},
+          {"tool_version", kToolVersion},
           {"time", isoTimeUtc()},
           {"verdict", r.exitCode() ? "regression" : "clean"},
           {"summary", verdictLine(r)},
@@ -182,8 +184,19 @@ std::string verdictMarkdown(const CompareReport& r) {
     }
   }
 
-  m << "\n## GPU time (medians of the rounds' median ms)\n\n"
-    << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
+  m << "\n## GPU time (medians of the rounds' median ms)\n\n";
+  // A reason many rows share (too few rounds, typically every case) is said once: in NOT CHECKED
+  // when it is there already, else above the table; the rows point to it.
+  auto rowReason = [](const CaseComparison& c) { return c.statusNote.empty() ? c.timing.reason : c.statusNote; };
+  std::map<std::string, int> reasons;
+  for (auto& c : r.cases)
+    if (c.timing.verdict == TimingVerdict::NotChecked) reasons[rowReason(c)]++;
+  for (auto& [why, n] : reasons) {
+    bool said = false;
+    for (auto& note : r.notChecked) said = said || note.find(why) != std::string::npos;
+    if (n > 1 && !said) m << "**NO VERDICT** for " << n << " of " << r.cases.size() << " cases: " << why << ".\n\n";
+  }
+  m << "| case | baseline | candidate | ratio [" << num((1 - r.options.alpha) * 100)
     << "% interval] | p | rounds | frames | verdict |\n"
     << "|---|---|---|---|---|---|---|---|\n";
   for (auto& c : r.cases) {
@@ -196,8 +209,8 @@ std::string verdictMarkdown(const CompareReport& r) {
         m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | " << num(t.ratio, "%.3f");
       else
         m << "- | - | -";
-      m << " | - | " << rounds << " | " << t.nBaseline << " / " << t.nCandidate
-        << " | NO VERDICT: " << (c.statusNote.empty() ? t.reason : c.statusNote) << " |\n";
+      m << " | - | " << rounds << " | " << t.nBaseline << " / " << t.nCandidate << " | "
+        << (reasons[rowReason(c)] > 1 ? "no verdict (the reason above)" : "NO VERDICT: " + rowReason(c)) << " |\n";
       continue;
     }
     m << num(t.baselineMs, "%.3f") << " | " << num(t.candidateMs, "%.3f") << " | **" << num(t.ratio, "%.3f") << "x** ["

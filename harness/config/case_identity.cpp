@@ -4,6 +4,7 @@
 #include "sha256.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
+#include "version.h"
 
 namespace lb {
 
@@ -16,16 +17,16 @@ static std::string fileDigest(const std::string& file, FileDigests& files) {
 }
 
 json terrainInputs(const TerrainSpec& t, FileDigests& files) {
-  json j = {{"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}};
-  if (t.originX != 0 || t.originZ != 0) j["origin"] = {t.originX, t.originZ};
+  json j = {
+      {"type", t.type}, {"extent", t.extent}, {"height_scale", t.heightScale}, {"origin", {t.originX, t.originZ}}};
   if (t.type == "procedural" || isGeneratedTerrain(t.type)) {
     j["size"] = t.size;
     j["seed"] = t.seed;
-    if (t.detailToSpacing) j["detail"] = "resolution";  // only when set: earlier digests hold
+    j["detail"] = t.detailToSpacing ? "resolution" : "fixed";
   } else {
     j["sha256"] = fileDigest(t.file, files);
     if (t.type == "r16" || t.type == "r32f") j["raw_size"] = {t.rawWidth, t.rawHeight};
-    if (t.type == "gdal") {  // what of the file is read (other types keep their earlier digests)
+    if (t.type == "gdal") {  // what of the file is read
       j["band"] = t.band;
       j["window"] = t.window.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.window);
       j["overview"] = t.overview;
@@ -47,29 +48,32 @@ json measurementInputs(const Config& c) {
             {"max_frames", c.maxFrames},
             {"repetitions", c.repetitions},
             {"measure", {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}}},
-            {"images", {{"frames", c.images.frames}, {"modes", c.images.modes}}}};
-  // Added later than the other fields: only when not the default, so digests of earlier runs stay valid.
-  const ImageRequest defaults;
-  if (c.images.width != defaults.width || c.images.height != defaults.height)
-    j["images"]["resolution"] = {c.images.width, c.images.height};
-  if (c.images.worst != defaults.worst) j["images"]["worst"] = false;
+            {"images",
+             {{"frames", c.images.frames},
+              {"modes", c.images.modes},
+              {"resolution", {c.images.width, c.images.height}},
+              {"worst", c.images.worst}}},
+            {"timing", {{"modes", c.timing.modes}}}};
+  // Since a config that grows resumes its folder (only the digests guard it), every setting that
+  // shapes a case's records is here, defaults included.
+  if (c.timing.calibrate)
+    j["timing"]["calibration"] = {
+        {"level", c.timing.level},         {"frames", c.timing.frames},          {"max_tries", c.timing.maxTries},
+        {"tolerance", c.timing.tolerance}, {"drift_limit", c.timing.driftLimit}, {"min_load_s", c.timing.minLoadS}};
   if (c.match.on())
     j["match"] = {{"metric", c.match.metric},
                   {"value", c.match.value},
                   {"frames", c.match.frames},
                   {"iterations", c.match.iterations}};
+  if (c.timing.testDrift != 0) j["timing"]["test_drift"] = c.timing.testDrift;  // tests: a planted drift
   if (c.testSlowdown > 0) j["test_slowdown"] = c.testSlowdown;  // a planted slowdown changes the timings
   return j;
 }
 
 json caseInputs(const json& terrain, const json& path, int width, int height, const std::string& scheme,
                 const json& params, const json& measurement) {
-  return {{"tool_version", LODBENCH_VERSION},
-          {"scheme", scheme},
-          {"params", params},
-          {"terrain", terrain},
-          {"path", path},
-          {"resolution", {width, height}},
+  return {{"tool_version", kToolVersion}, {"scheme", scheme}, {"params", params},
+          {"terrain", terrain},           {"path", path},     {"resolution", {width, height}},
           {"measurement", measurement}};
 }
 
@@ -95,11 +99,11 @@ static void diff(const json& a, const json& b, const std::string& at, std::strin
   }
   std::string name = at;
   if (name.size() > 7 && name.compare(name.size() - 7, 7, ".sha256") == 0)
-    name = name.substr(0, name.size() - 7) + " file contents (sha256";
+    name = name.substr(0, name.size() - 7) + " file contents (sha256 ";
   else
     name += " (";
   if (!out.empty()) out += "; ";
-  out += name + " " + (a.is_null() ? "absent" : brief(a)) + " -> " + (b.is_null() ? "absent" : brief(b)) + ")";
+  out += name + (a.is_null() ? "absent" : brief(a)) + " -> " + (b.is_null() ? "absent" : brief(b)) + ")";
 }
 
 std::string describeInputChange(const json& recorded, const json& now) {

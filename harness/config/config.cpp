@@ -183,9 +183,7 @@ static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::
     if (s.contains("params")) params = s["params"];
   }
   const Scheme* scheme = findScheme(e.name);
-  if (!scheme)
-    r.fail(ptr + (s.is_string() ? "" : "/name"),
-           "unknown scheme '" + printable(e.name) + "' (known: " + schemeNames() + ")");
+  if (!scheme) r.fail(ptr + (s.is_string() ? "" : "/name"), unknownSchemeText(printable(e.name)));
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
   e.variants = {ParamValues{}};
@@ -353,9 +351,11 @@ std::vector<Case> expandCases(const Config& config) {
   std::vector<Variant> variants;
   for (size_t i = 0; i < config.schemes.size(); ++i)
     for (auto& v : config.schemes[i].variants) variants.push_back({config.schemes[i].name, v, i});
+  // A parameter given at its default value is the same case as one left out.
+  auto resolved = [](const Variant& v) { return resolveParams(findScheme(v.scheme)->info(), v.params); };
   for (size_t i = 0; i < variants.size(); ++i)
     for (size_t j = i + 1; j < variants.size(); ++j)
-      if (variants[i].scheme == variants[j].scheme && variants[i].params == variants[j].params)
+      if (variants[i].scheme == variants[j].scheme && resolved(variants[i]) == resolved(variants[j]))
         throw InputError(config.file + ": /schemes/" + std::to_string(variants[i].entry) + " and /schemes/" +
                          std::to_string(variants[j].entry) + " both run " + variants[i].scheme + " " +
                          paramsText(variants[i].params) + "; remove one");
@@ -375,7 +375,7 @@ std::vector<Case> expandCases(const Config& config) {
           for (auto& v : variants) {
             const TerrainSpec& t = config.terrains[ti];
             const std::string& path = config.paths[pi];
-            Case c{"", v.scheme, v.params, t, labels[ti], path, res.first, res.second};
+            Case c{"", v.scheme, v.params, v.params, t, labels[ti], path, res.first, res.second};
             c.id = v.scheme;
             for (auto& [k, val] : v.params) c.id += "-" + k + formatNumber(val);
             c.id += "_" + c.terrainLabel + "_" + fileStem(path) + "_" + std::to_string(res.first) + "x" +
@@ -383,8 +383,10 @@ std::vector<Case> expandCases(const Config& config) {
             if (config.grids.size() > 1) c.id += "_g" + std::to_string(grid);
             c.grid = grid;
             if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
+            // Every parameter with its resolved value: a default that changes meaning changes the digest.
+            c.params = resolved(v);
             nlohmann::json params = nlohmann::json::object();
-            for (auto& [k, val] : v.params) params[k] = val;
+            for (auto& [k, val] : c.params) params[k] = val;
             c.inputs = caseInputs(terrains[ti], paths[pi], res.first, res.second, v.scheme, params, measurement);
             c.digest = inputsDigest(c.inputs);
             c.terrainDigest = inputsDigest(terrains[ti]);

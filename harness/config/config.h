@@ -54,7 +54,8 @@ struct Config {
 struct Case {
   std::string id;
   std::string scheme;
-  ParamValues params;
+  ParamValues params;        // every parameter of the scheme, defaults resolved
+  ParamValues listedParams;  // those the config lists (the case id and labels name these)
   TerrainSpec terrain;
   std::string terrainLabel;
   std::string path;

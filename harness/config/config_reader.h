@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "did_you_mean.h"
 #include "error.h"
 #include "number_text.h"
 
@@ -27,7 +28,8 @@ struct ConfigReader {
       if (!allowed.count(k)) {
         std::string list;
         for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(ptr + "/" + printable(k), "unknown key (allowed: " + list + ")");
+        fail(ptr + "/" + printable(k),
+             "unknown key (allowed: " + list + ")" + didYouMean(k, {allowed.begin(), allowed.end()}));
       }
   }
   double number(const nlohmann::json& v, const std::string& ptr, double lo, double hi) const {

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "did_you_mean.h"
 #include "error.h"
 #include "number_text.h"
 #include "shaders/shared.h"
@@ -38,9 +39,13 @@ ParamValues resolveParams(const SchemeInfo& info, const ParamValues& given) {
       if (p.name == name) spec = &p;
     if (!spec) {
       std::string known;
-      for (auto& p : info.params) known += (known.empty() ? "" : ", ") + p.name;
+      std::vector<std::string> names;
+      for (auto& p : info.params) {
+        known += (known.empty() ? "" : ", ") + p.name;
+        names.push_back(p.name);
+      }
       throw InputError("scheme '" + info.name + "' has no parameter '" + name +
-                       "' (parameters: " + (known.empty() ? "none" : known) + ")");
+                       "' (parameters: " + (known.empty() ? "none" : known) + ")" + didYouMean(name, names));
     }
     if (!std::isfinite(value) || value < spec->min || value > spec->max)
       throw InputError("scheme '" + info.name + "' parameter '" + name + "' = " + numberText(value) + " is outside [" +

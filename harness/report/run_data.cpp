@@ -122,7 +122,7 @@ static void labelCases(ReportRun& run) {
     resolutions.insert(std::to_string(c.width) + "x" + std::to_string(c.height));
   }
   for (auto& c : run.cases) {
-    c.paramsLabel = paramsLabel(c.params);
+    c.paramsLabel = paramsLabel(c.listedParams);  // the values the config lists, not every default
     c.scenario = c.path.empty() ? "(no path)" : fs::path(c.path).stem().string();
     if (terrains.size() > 1) c.scenario += " / " + c.terrain;
     if (resolutions.size() > 1) c.scenario += " / " + std::to_string(c.width) + "x" + std::to_string(c.height);
@@ -130,7 +130,7 @@ static void labelCases(ReportRun& run) {
   }
   sortCases(run);
   for (auto& c : run.cases) {
-    c.label = c.scheme + (c.params.empty() ? "" : " " + c.paramsLabel);
+    c.label = c.scheme + (c.listedParams.empty() ? "" : " " + c.paramsLabel);
     if (c.status == "ok" &&
         std::find(run.paramLabels.begin(), run.paramLabels.end(), c.paramsLabel) == run.paramLabels.end())
       run.paramLabels.push_back(c.paramsLabel);

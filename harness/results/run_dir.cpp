@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "config/case_identity.h"
 #include "config/config.h"
 #include "error.h"
 #include "results/write.h"
+#include "version.h"
 
 namespace lb {
 
@@ -45,7 +47,19 @@ json readRunJson(const std::string& dir) {
   return rj;
 }
 
-std::vector<CaseFile> readCaseFiles(const std::string& dir) {
+// Case ids run.json lists as stale: files a grown sweep keeps on disk but no longer reports.
+static std::set<std::string> staleCaseIds(const std::string& dir) {
+  std::set<std::string> ids;
+  if (!hasRunJson(dir)) return ids;
+  json rj = readJsonFile(dir + "/run.json");
+  if (rj.is_object() && rj.contains("stale_cases") && rj["stale_cases"].is_array())
+    for (auto& id : rj["stale_cases"])
+      if (id.is_string()) ids.insert(id.get<std::string>());
+  return ids;
+}
+
+std::vector<CaseFile> readCaseFiles(const std::string& dir, bool includeStale) {
+  const std::set<std::string> stale = includeStale ? std::set<std::string>() : staleCaseIds(dir);
   std::vector<fs::path> files;
   std::error_code ec;
   if (fs::is_directory(dir + "/cases", ec))
@@ -64,22 +78,29 @@ std::vector<CaseFile> readCaseFiles(const std::string& dir) {
     if (d.contains("status") && !d["status"].is_string()) throw InputError(c.file + ": field 'status' is not a string");
     auto [it, fresh] = seen.emplace(c.id(), c.file);
     if (!fresh) throw InputError(c.file + ": case_id '" + c.id() + "' also appears in " + it->second);
-    out.push_back(std::move(c));
+    if (!stale.count(c.id())) out.push_back(std::move(c));
   }
   return out;
 }
 
 // frames.csv and summary.json are rebuilt from the case files, so resumed runs stay complete.
 void writeAggregates(const std::string& dir, const json& context) {
-  std::string csv = framesCsvHeader();
+  const std::vector<CaseFile> files = readCaseFiles(dir);
+  std::set<std::string> names;  // every parameter of any case: one frames.csv column each
+  for (auto& cf : files)
+    if (cf.doc.contains("params") && cf.doc["params"].is_object())
+      for (auto& [k, v] : cf.doc["params"].items()) names.insert(k);
+  const std::vector<std::string> params(names.begin(), names.end());
+  std::string csv = framesCsvHeader(params);
   json cases = json::array();
-  for (auto& cf : readCaseFiles(dir)) {
+  for (auto& cf : files) {
     const json& cj = cf.doc;
     auto field = [&](const char* k) { return cj.contains(k) ? cj[k] : json(); };
     json terrain = field("terrain");
     cases.push_back({{"case_id", cj["case_id"]},
                      {"scheme", field("scheme")},
                      {"params", field("params")},
+                     {"params_listed", field("params_listed")},
                      {"terrain", terrain.is_object() && terrain.contains("label") ? terrain["label"] : terrain},
                      {"path", field("path")},
                      {"resolution", field("resolution")},
@@ -87,7 +108,7 @@ void writeAggregates(const std::string& dir, const json& context) {
                      {"reason", field("reason")},
                      {"digest", field("digest")},
                      {"summary", field("summary")}});
-    csv += framesCsvRows(cj);
+    csv += framesCsvRows(cj, params);
   }
   writeFileAtomic(dir + "/frames.csv", csv);
   json summary = {{"schema_version", kSchemaVersion}, {"context", context}, {"cases", cases}};
@@ -98,10 +119,10 @@ ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases) {
   ResumePlan plan;
   std::map<std::string, const Case*> byId;
   for (auto& c : cases) byId[c.id] = &c;
-  for (auto& cf : readCaseFiles(dir)) {
+  for (auto& cf : readCaseFiles(dir, true)) {  // a stale case back in the config is kept again
     auto it = byId.find(cf.id());
     if (it == byId.end()) {
-      plan.foreign.push_back(cf.file);
+      plan.stale.push_back(cf.id());
       continue;
     }
     const Case& c = *it->second;
@@ -126,15 +147,24 @@ static std::string list(const std::vector<std::string>& items) {
   return s;
 }
 
-ResumePlan checkResume(const std::string& dir, const json& previous, const json& configRaw, int shardIndex,
-                       int shardCount, const std::vector<Case>& cases, bool rerunChanged) {
-  const std::string runJson = dir + "/run.json";
+void checkToolVersion(const std::string& dir, const json& previous) {
   const json& ctx = previous["context"];
-  if (!ctx.contains("config") || ctx["config"] != configRaw)
-    throw InputError(
-        runJson + ": this run directory holds a different config ('" +
-        (ctx.contains("config_file") && ctx["config_file"].is_string() ? ctx["config_file"].get<std::string>() : "?") +
-        "'); choose another --out");
+  const std::string wrote = ctx.contains("tool_version") && ctx["tool_version"].is_string()
+                                ? ctx["tool_version"].get<std::string>()
+                                : "an unknown version";
+  if (wrote == kToolVersion) return;
+  throw InputError(dir + "/run.json: this run directory was written by lodbench " + wrote + ", this is lodbench " +
+                   kToolVersion +
+                   "; a parameter's, setting's or metric's meaning changed between them (docs/results-format.md, "
+                   "Case identity), so its cases can be neither kept nor mixed with new ones: run into a new --out "
+                   "(the old folder stays readable by report and compare), or finish it with lodbench " +
+                   wrote);
+}
+
+ResumePlan checkResume(const std::string& dir, const json& previous, int shardIndex, int shardCount,
+                       const std::vector<Case>& cases, bool rerunChanged) {
+  const std::string runJson = dir + "/run.json";
+  checkToolVersion(dir, previous);
   int oldIndex = 0, oldCount = 1;
   if (previous.contains("shard") && previous["shard"].is_object()) {
     oldIndex = previous["shard"].value("index", 0);
@@ -145,21 +175,27 @@ ResumePlan checkResume(const std::string& dir, const json& previous, const json&
                      std::to_string(oldCount) + ", not " + std::to_string(shardIndex) + "/" +
                      std::to_string(shardCount) + " (--shard must match the folder's; choose another --out)");
   ResumePlan plan = planResume(dir, cases);
-  if (!rerunChanged && (!plan.changed.empty() || !plan.foreign.empty())) {
-    std::string msg = dir + ": cannot resume: ";
-    if (!plan.changed.empty())
-      msg += std::to_string(plan.changed.size()) + " finished case(s) were run with other inputs:" + list(plan.changed);
-    if (!plan.foreign.empty())
-      msg += std::string(plan.changed.empty() ? "" : "\n") + std::to_string(plan.foreign.size()) +
-             " case file(s) belong to no case of this config and shard:" + list(plan.foreign);
-    throw InputError(msg + "\n(run again with --rerun-changed to rerun changed cases and remove foreign case files)");
-  }
+  if (!rerunChanged && !plan.changed.empty())
+    throw InputError(dir + ": cannot resume: " + std::to_string(plan.changed.size()) +
+                     " finished case(s) were run with other inputs:" + list(plan.changed) +
+                     "\n(run again with --rerun-changed to run them again with the inputs of now)");
   for (auto& c : plan.changed) std::fprintf(stderr, "lodbench: rerunning changed case %s\n", c.c_str());
-  for (auto& f : plan.foreign) {
-    std::fprintf(stderr, "lodbench: removing case file of no case of this run: %s\n", f.c_str());
-    fs::remove(f);
-  }
+  if (!plan.stale.empty())
+    std::fprintf(stderr,
+                 "lodbench: %zu stale case(s) in %s, no longer in the config (kept on disk, left out of run.json's "
+                 "cases, summary.json, frames.csv and the report; listed in run.json \"stale_cases\"):%s\n",
+                 plan.stale.size(), dir.c_str(), list(plan.stale).c_str());
   return plan;
+}
+
+void checkSameDevice(const std::string& dir, const json& previous, const json& context) {
+  const json& was = previous["context"];
+  for (const char* k : {"device", "driver", "driver_version"}) {
+    const json a = was.contains(k) ? was[k] : json(), b = context.contains(k) ? context[k] : json();
+    if (a != b)
+      throw InputError(dir + "/run.json: this run directory was run with " + k + " " + a.dump() + ", this run has " +
+                       b.dump() + "; one run holds one device's figures: choose another --out");
+  }
 }
 
 }  // namespace lb

@@ -27,8 +27,9 @@ struct CaseFile {
 };
 // Every cases/*.json of dir, sorted by file name, each checked to be a case file (an object with a
 // string "case_id" and a "frames" array); two files with one case_id are an error. No cases/
-// directory reads as no cases.
-std::vector<CaseFile> readCaseFiles(const std::string& dir);
+// directory reads as no cases. Cases dir/run.json lists in "stale_cases" (a grown sweep's cases no
+// longer in its config) are left out unless includeStale: every reader sees the run as it is now.
+std::vector<CaseFile> readCaseFiles(const std::string& dir, bool includeStale = false);
 
 // Rebuilds frames.csv and summary.json of a run directory from its case files.
 void writeAggregates(const std::string& dir, const nlohmann::json& context);
@@ -38,15 +39,20 @@ void writeAggregates(const std::string& dir, const nlohmann::json& context);
 struct ResumePlan {
   std::set<std::string> reuse;       // case ids kept as they are
   std::vector<std::string> changed;  // "<id>: <what changed>" for ok cases whose inputs changed
-  std::vector<std::string> foreign;  // case files of cases this run does not have
+  std::vector<std::string> stale;    // ids of case files of no case of the config now (kept on disk)
 };
 ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases);
 
-// The checks `run` makes before reusing an existing directory: the same config, the same shard,
-// and (unless rerunChanged) no finished case whose inputs changed and no foreign case file.
-// Throws InputError naming the directory, the cases and what changed. With rerunChanged, the
-// changed cases run again and foreign case files are removed (each named on stderr).
-ResumePlan checkResume(const std::string& dir, const nlohmann::json& previousRun, const nlohmann::json& configRaw,
-                       int shardIndex, int shardCount, const std::vector<Case>& cases, bool rerunChanged);
+// The checks `run` makes before reusing an existing directory, so that a sweep can grow: the same
+// tool version (checkToolVersion), the same shard, and (unless rerunChanged) no finished case whose
+// inputs changed. Cases new to the config simply run; case files of cases no longer in it are
+// stale: kept, named on stderr, and listed by the caller in run.json. Throws InputError naming
+// the directory, the cases and what changed. The config itself may differ: the digests decide.
+ResumePlan checkResume(const std::string& dir, const nlohmann::json& previousRun, int shardIndex, int shardCount,
+                       const std::vector<Case>& cases, bool rerunChanged);
+// A folder written by another tool version: an InputError saying which version wrote it and what to do.
+void checkToolVersion(const std::string& dir, const nlohmann::json& previousRun);
+// Resuming on another device or driver would mix two devices' timings in one run: an InputError.
+void checkSameDevice(const std::string& dir, const nlohmann::json& previousRun, const nlohmann::json& context);
 
 }  // namespace lb

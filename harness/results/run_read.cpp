@@ -14,7 +14,8 @@ void readCaseRecord(CaseRecord& c, const json& j) {
   if (j.contains("status")) c.status = str(j, "status");
   if (j.contains("reason")) c.reason = str(j, "reason");
   if (j.contains("path")) c.path = str(j, "path");
-  if (j.contains("params") && j["params"].is_object()) c.params = j["params"];
+  if (j.contains("params") && j["params"].is_object()) c.params = c.listedParams = j["params"];
+  if (j.contains("params_listed") && j["params_listed"].is_object()) c.listedParams = j["params_listed"];
   if (j.contains("summary") && j["summary"].is_object()) c.summary = j["summary"];
   if (j.contains("frames") && j["frames"].is_array()) c.frames = j["frames"];
   if (auto t = j.find("terrain"); t != j.end())

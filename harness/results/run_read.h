@@ -17,7 +17,9 @@ struct CaseRecord {
   std::string terrain;                       // the terrain's label
   int width = 0, height = 0;
   int grid = 0;  // patches per side (case file "grid", else inputs.measurement.grid); 0 unknown
-  nlohmann::json params = nlohmann::json::object();
+  nlohmann::json params = nlohmann::json::object();        // every parameter, resolved
+  nlohmann::json listedParams = nlohmann::json::object();  // those the config listed (labels); files
+                                                           // without "params_listed": params
   nlohmann::json summary = nlohmann::json::object();
   nlohmann::json frames = nlohmann::json::array();  // per-frame records; empty without a case file
   std::optional<double> targetAreaPx;

@@ -12,9 +12,11 @@
 #include <stdexcept>
 
 #include "config/config.h"
+#include "number_text.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
+#include "version.h"
 #include "vk/context.h"
 
 namespace lb {
@@ -66,7 +68,7 @@ json runContext(const Context& ctx, const Config& config) {
   gethostname(host, sizeof host - 1);
   return {
       {"tool", "lodbench"},
-      {"tool_version", LODBENCH_VERSION},
+      {"tool_version", kToolVersion},
 #ifdef NDEBUG
       {"build_type", "release"},
 #else
@@ -273,15 +275,18 @@ json caseJson(const Case& c, const CaseResult& r) {
     }
     frames.push_back(rec);
   }
-  json params = json::object();
+  json params = json::object(), listed = json::object();
   for (auto& [k, v] : c.params) params[k] = v;
-  if (r.matched.is_object() && !r.matched.value("param", "").empty()) params[r.matched["param"]] = r.matched["value"];
+  for (auto& [k, v] : c.listedParams) listed[k] = v;
+  if (r.matched.is_object() && !r.matched.value("param", "").empty())
+    params[r.matched["param"]] = listed[r.matched["param"]] = r.matched["value"];
   return {{"schema_version", kSchemaVersion},
           {"case_id", c.id},
           {"digest", c.digest},
           {"inputs", c.inputs},
           {"scheme", c.scheme},
           {"params", params},
+          {"params_listed", listed},
           {"terrain",
            {{"type", c.terrain.type},
             {"label", c.terrainLabel},
@@ -312,16 +317,24 @@ static const char* const kTimingColumns[] = {
     "frame",           "gpu_ms",           "cpu_ms",          "patches",
     "tes_invocations", "clip_invocations", "clip_primitives", "fragment_invocations"};
 
-std::string framesCsvHeader() {
+std::string framesCsvHeader(const std::vector<std::string>& params) {
   std::string h = "case_id";
   for (const char* c : kTimingColumns) h += std::string(",") + c;
   for (auto& c : metricColumns()) h += "," + c;
+  h += ",scheme";
+  for (auto& p : params) h += ",param_" + p;
   return h + "\n";
 }
 
-std::string framesCsvRows(const json& cj) {
+std::string framesCsvRows(const json& cj, const std::vector<std::string>& params) {
   std::string out;
   std::string id = cj.value("case_id", "");
+  // The case's scheme and parameter values end every row, so the file filters without a join.
+  std::string tail = "," + cj.value("scheme", "");
+  const json noParams = json::object();
+  const json& given = cj.contains("params") && cj["params"].is_object() ? cj["params"] : noParams;
+  for (auto& p : params)
+    tail += "," + (given.contains(p) && given[p].is_number() ? numberText(given[p].get<double>()) : std::string());
   for (const json& f : cj["frames"]) {
     out += id;
     for (const char* c : kTimingColumns) out += "," + (f.contains(c) ? f[c].dump() : std::string());
@@ -333,7 +346,7 @@ std::string framesCsvRows(const json& cj) {
         out += f[c].dump();
       }
     }
-    out += "\n";
+    out += tail + "\n";
   }
   return out;
 }

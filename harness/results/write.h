@@ -43,8 +43,10 @@ std::string isoTimeUtc();
 nlohmann::json runContext(const Context& ctx, const Config& config);
 nlohmann::json caseSummary(const CaseResult& r);
 nlohmann::json caseJson(const Case& c, const CaseResult& r);
-std::string framesCsvHeader();
+// frames.csv: case_id, the timing and metric columns, then scheme and one param_<name> column per
+// parameter any case of the run has (sorted; empty where a case's scheme has no such parameter).
+std::string framesCsvHeader(const std::vector<std::string>& params);
 // One CSV row per frame record of a case file (metric columns empty on unmeasured frames).
-std::string framesCsvRows(const nlohmann::json& caseFile);
+std::string framesCsvRows(const nlohmann::json& caseFile, const std::vector<std::string>& params);
 
 }  // namespace lb

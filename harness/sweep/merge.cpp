@@ -25,7 +25,7 @@ MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>&
     if (c["config"] != first["config"])
       throw InputError("merge: " + inputs[i] + " ran a different config than " + inputs[0] +
                        " (use --force to merge anyway)");
-    for (const char* k : {"device", "driver", "driver_version"})
+    for (const char* k : {"tool_version", "device", "driver", "driver_version"})
       if (c[k] != first[k])
         throw InputError(std::string("merge: ") + inputs[i] + " ran on " + k + " '" + c[k].dump() + "', " + inputs[0] +
                          " on '" + first[k].dump() + "' (use --force to merge anyway)");

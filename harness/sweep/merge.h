@@ -9,7 +9,7 @@ struct MergeTotals {
   int cases = 0, duplicates = 0;
 };
 
-// Refuses (InputError) runs of different configs, devices or drivers unless `force`.
+// Refuses (InputError) runs of different configs, tool versions, devices or drivers unless `force`.
 MergeTotals mergeRuns(const std::string& outDir, const std::vector<std::string>& inputs, bool force);
 
 }  // namespace lb

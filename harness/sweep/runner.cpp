@@ -18,6 +18,7 @@
 #include "results/run_dir.h"
 #include "results/run_json.h"
 #include "results/write.h"
+#include "sweep/latest_link.h"
 #include "sweep/progress.h"
 #include "vk/context.h"
 #include "vk/device_limits.h"
@@ -72,8 +73,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   ResumePlan plan;
   if (hasRunJson(totals.dir)) {
     previous = readRunJson(totals.dir);
-    plan = checkResume(totals.dir, previous, config.raw, options.shardIndex, options.shardCount, cases,
-                       options.rerunChanged);
+    plan = checkResume(totals.dir, previous, options.shardIndex, options.shardCount, cases, options.rerunChanged);
   }
   Context ctx;
   createContext(ctx, {config.device, options.validation});
@@ -83,13 +83,17 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   std::set<std::string> checked;
   for (const Case& c : cases)
     if (checked.insert(c.terrainLabel).second) checkTerrainFits(limits, c.terrain, c.terrainLabel);
+  json context = runContext(ctx, config);
+  if (!previous.is_null()) checkSameDevice(totals.dir, previous, context);
   fs::create_directories(totals.dir + "/cases");
   fs::create_directories(totals.dir + "/images");
   removeStaleTemps(totals.dir);
-  json context = runContext(ctx, config);
+  if (options.outDir.empty()) pointLatestAt(totals.dir);
   std::vector<std::string> ids;
   for (auto& c : cases) ids.push_back(c.id);
   json run = startedRunJson(context, options.shardIndex, options.shardCount, ids, previous);
+  run["stale_cases"] = plan.stale;  // on disk, out of the run: readCaseFiles leaves them out
+  if (previous.contains("costs")) run["costs"] = previous["costs"];         // until this invocation's end
   if (config.testSlowdown > 0) run["test_slowdown"] = config.testSlowdown;  // so no one mistakes it for data
   if (const char* off = std::getenv("LODBENCH_TEST_DISABLE"))  // features a test switched off (vk/context.cpp)
     run["test_disabled_features"] = off;
@@ -158,6 +162,10 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
                              {"measured_s_per_frame", val(o.measured)},
                              {"case_overhead_s", val(o.overhead)}};
   }
+  // A grown sweep measures only its new schemes: the others keep their earlier figures.
+  if (previous.contains("costs") && previous["costs"].is_object())
+    for (auto& [scheme, cost] : previous["costs"].items())
+      if (scheme != "terrains" && !end.costs.contains(scheme)) end.costs[scheme] = cost;
   end.costs["terrains"] = stageCostsJson();  // no scheme is named "terrains"
   end.interrupted = totals.interrupted;
   end.ok = totals.ok;

@@ -134,6 +134,7 @@ static std::vector<DeviceCandidate> examine(VkInstance instance, std::vector<VkP
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     if (p.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(out[i], &f2);
     DeviceCandidate c{int(i), p.deviceName, false, "", deviceLimits(out[i])};
+    c.cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     if (p.apiVersion < VK_API_VERSION_1_3)
       c.rejectReason = "Vulkan " + apiVersionString(p.apiVersion) + " < 1.3 (needs dynamic rendering)";
     else if (!f.tessellationShader)

@@ -24,6 +24,7 @@ struct DeviceCandidate {
   bool suitable = false;
   std::string rejectReason;  // empty when suitable
   DeviceLimits limits;       // the largest terrain it takes (vk/device_limits.h)
+  bool cpu = false;          // VK_PHYSICAL_DEVICE_TYPE_CPU: a software rasterizer such as lavapipe
 };
 
 struct Context {

@@ -7,6 +7,7 @@
 
 #include "bench.h"
 #include "schemes/registry.h"
+#include "version.h"
 
 namespace {
 
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
   for (auto& e : table()) benchmark::RegisterBenchmark(e.name.c_str(), e.run);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::AddCustomContext("lodbench_version", LODBENCH_VERSION);
+  benchmark::AddCustomContext("lodbench_version", lb::kToolVersion);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
