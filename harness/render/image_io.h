@@ -5,8 +5,13 @@
 #include <vector>
 
 namespace lb {
-// Writes RGBA8 pixels as PNG atomically (temp file + rename). Throws on failure.
+// Writes RGBA8 pixels as PNG atomically (temp file + rename), compressed by zlib at kPngZlibLevel;
+// RGB when every alpha is 255 (images of people and masks alike are opaque). Throws on failure.
 void writePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba);
+
+constexpr int kPngZlibLevel = 9;  // zlib's best: run images are written once and kept
+// The RGB bytes of RGBA8 pixels whose alpha is all 255; empty when any pixel is not opaque.
+std::vector<uint8_t> opaqueRgb(const uint8_t* rgba, size_t pixels);
 
 // Background of images written for people (run images, `lodbench render`): a light grey-blue sky.
 // Measurement renders keep the clear colour pure magenta (metrics/raycast_shade.h kClearRgba),
