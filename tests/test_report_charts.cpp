@@ -318,7 +318,12 @@ TEST(ReportCharts, ScaleChartsOnlyWhereTheRunVariesThem) {
   EXPECT_EQ(charts[0].data.size(), 3u) << "uniform's single level is no line";
   auto p = layersWith(charts[0].spec, [](const json& o) { return o["mark"].value("type", "") == "line"; });
   ASSERT_FALSE(p.empty());
-  EXPECT_EQ(p[0]["encoding"]["x"]["title"].get<std::string>().rfind("max_error_px (errbound)", 0), 0u);
+  EXPECT_EQ(p[0]["encoding"]["x"]["title"].get<std::string>().rfind("max_error_px", 0), 0u);
+  // Small multiples: one panel per scheme and parameter, wrapped, titled by both.
+  const json& wrapped = charts[0].spec["vconcat"][0];
+  EXPECT_EQ(wrapped["columns"], kPanelColumns);
+  ASSERT_EQ(wrapped["concat"].size(), 1u);
+  EXPECT_EQ(wrapped["concat"][0]["title"]["text"], "max_error_px (errbound)");
 
   // Nothing varies: no scale chart.
   EXPECT_TRUE(scaleCharts(makeRun({makeCase("uniform", {{"level", 8}}, "flyover", 320, 180, 32, 1, 5e4)})).empty());

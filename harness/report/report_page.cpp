@@ -8,6 +8,7 @@
 #include "report/report_answer.h"
 #include "report/report_glossary.h"
 #include "report/report_howto.h"
+#include "report/report_side_by_side.h"
 #include "report/report_tables.h"
 #include "report/scenario_table.h"
 #include "report/table.h"
@@ -154,6 +155,8 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   }
 
   for (const Section& s : kChartSections) chartSection(w, s, charts);
+  auto [sideMd, sideHtml] = sideBySideSection(run, runHref);
+  w.raw(sideMd, sideHtml);
 
   w.heading(2, "Stability", "stability");
   w.para(
