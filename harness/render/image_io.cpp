@@ -1,11 +1,11 @@
 #include "render/image_io.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
-
-#include <zlib.h>
 
 // stb's own deflate leaves run images about a sixth larger than zlib at its best level (measured on
 // the default job's images), so stb_image_write hands its filtered rows to zlib.
