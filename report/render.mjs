@@ -61,7 +61,7 @@ const jsonSafe = (value) => JSON.stringify(value).replace(/</g, '\\u003c');
 
 function embedImages(html) {
   // loading="lazy" does not matter for data: URIs; the attribute stays harmless.
-  return html.replace(/<img src="([^"]+)"/g, (tag, src) => {
+  return html.replace(/<img src="([^"]+)"/g, (tag, src) => {  // imageTag() writes src first
     if (src.startsWith('data:')) return tag;
     const file = path.isAbsolute(src) ? src : path.join(dir, src.replace(/&amp;/g, '&'));
     if (!fs.existsSync(file)) {
@@ -196,6 +196,9 @@ Promise.all(Object.keys(specs).map((id) =>
 fs.writeFileSync(path.join(dir, 'report.html'), html);
 const bytes = Buffer.byteLength(html);
 const linked = (body.match(/<img src="(?!data:)/g) || []).length;
+const images = (body.match(/<img /g) || []).length;
+if (linked + (body.match(/<img src="data:/g) || []).length !== images)
+  console.error(`render.mjs: ${images - linked} <img> without a leading src: not counted or embedded`);
 console.error(`render.mjs: ${path.join(dir, 'report.html')} (${(bytes / 1e6).toFixed(1)} MB, ${bytes} bytes, ` +
               (selfContained ? 'self-contained: images embedded' : `${linked} images linked, not embedded`) + '), ' +
               `${Object.keys(specs).length} SVGs in ${path.join(dir, 'svg')}` +

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
-// stb's own deflate leaves run images about a sixth larger than zlib at its best level (measured on
-// the default job's images), so stb_image_write hands its filtered rows to zlib.
+// stb's own deflate leaves run images a third larger than zlib (kPngZlibLevel says by how much), so
+// stb_image_write hands its filtered rows to zlib.
 static unsigned char* zlibCompress(unsigned char* data, int length, int* outLength, int /*stbLevel*/) {
   uLongf size = compressBound(uLong(length));
   auto* out = static_cast<unsigned char*>(std::malloc(size));  // stb frees it with STBIW_FREE (free)

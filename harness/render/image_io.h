@@ -9,7 +9,9 @@ namespace lb {
 // RGB when every alpha is 255 (images of people and masks alike are opaque). Throws on failure.
 void writePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba);
 
-constexpr int kPngZlibLevel = 9;  // zlib's best: run images are written once and kept
+// zlib's default level. On the default job's 488 images (320x180): 30.9 MB in 4.0 s, against 30.2 MB in
+// 12.1 s at level 9 and 47.8 MB in 3.4 s for stb's own deflate on RGBA (what this replaced).
+constexpr int kPngZlibLevel = 6;
 // The RGB bytes of RGBA8 pixels whose alpha is all 255; empty when any pixel is not opaque.
 std::vector<uint8_t> opaqueRgb(const uint8_t* rgba, size_t pixels);
 

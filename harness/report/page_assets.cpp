@@ -74,7 +74,8 @@ const char* const kScript = R"(<script>
 })();
 // The side-by-side flip: one image showing scheme A or B in the chosen mode. Its pictures are the
 // grid's own <img> elements (data-scheme, data-mode), so it works with linked and embedded images.
-(() => {
+// This script runs at the top of the body: it waits for the elements below it.
+document.addEventListener('DOMContentLoaded', () => {
   const $ = (id) => document.getElementById(id);
   const view = document.querySelector('#flip img');
   if (!view) return;
@@ -92,7 +93,7 @@ const char* const kScript = R"(<script>
   document.addEventListener('keydown', (e) => {
     if ((e.key === 'f' || e.key === 'F') && !/^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName)) flip();
   });
-})();
+});
 </script>
 )";
 

@@ -149,7 +149,8 @@ std::pair<std::string, std::string> sideBySideSection(const ReportRun& run, cons
       }
       md += "![" + m + "](" + runHref + "/" + it->second + ") | ";
       std::string tag = imageTag(run, runHref, it->second, r.c->scheme + " " + m);
-      tag.insert(4, " data-scheme=\"" + htmlEscape(r.c->scheme) + "\" data-mode=\"" + htmlEscape(m) + "\"");
+      tag.insert(tag.size() - 1,
+                 " data-scheme=\"" + htmlEscape(r.c->scheme) + "\" data-mode=\"" + htmlEscape(m) + "\"");
       html += "<div class=\"shot side-shot\">" + tag + "</div>";
     }
     md += "\n";
