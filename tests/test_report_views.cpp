@@ -17,6 +17,7 @@
 #include "report/report_images.h"
 #include "report/report_side_by_side.h"
 #include "report_fixture.h"
+#include "schemes/registry.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -179,6 +180,32 @@ TEST(ReportSideBySide, OneFrameEverySchemeAtTheSettingNearestTheCommonError) {
   // The fixture alone has no frame imaged for two schemes: no view, no empty section.
   EXPECT_EQ(chooseSideBySide(before).frame, -1);
   EXPECT_EQ(sideBySideSection(before, "..").second, "");
+}
+
+TEST(ReportSideBySide, ASchemeWithNoSettingNearTheTargetShowsItsDefault) {
+  // Errors 1, 5 (uniform), 6 (sphere), 7 (phong), and distance far off at 40 and 60: target 6.5.
+  const Scheme* distance = findScheme("distance");
+  ASSERT_NE(distance, nullptr);
+  double def = 0;
+  for (const ParamSpec& p : distance->info().params)
+    if (p.name == distance->info().mainParam) def = p.defaultValue;
+  std::vector<ReportCase> cases = {timedCase("uniform", 2, {1}, 1),         timedCase("uniform", 4, {1}, 5),
+                                   timedCase("sphere", 4, {1}, 6),          timedCase("phong", 4, {1}, 7),
+                                   timedCase("distance", def * 2, {1}, 40), timedCase("distance", def, {1}, 60)};
+  for (auto& c : cases) c.params = {{findScheme(c.scheme)->info().mainParam, c.params["p"]}};
+  ReportRun run = runOf(cases, 1);
+  for (auto& c : run.cases) run.images[c.id][5] = {{"shaded", "images/" + c.id + "_f5_shaded.png"}};
+  run.images[run.cases[0].id][9] = {{"shaded", "images/only-one-scheme.png"}};
+  SideBySide v = chooseSideBySide(run);
+  EXPECT_EQ(v.frame, 5);
+  EXPECT_EQ(v.target, 6.5);
+  ASSERT_EQ(v.rows.size(), 4u);
+  EXPECT_EQ(v.rows[0].c, &run.cases[1]) << "uniform: 5 px is nearer 6.5 than 1 px";
+  EXPECT_TRUE(v.rows[0].matched);
+  EXPECT_TRUE(v.rows[1].matched && v.rows[2].matched);
+  EXPECT_EQ(v.rows[3].c, &run.cases[5]) << "distance: nothing within 1.5x of 6.5 px, so its default setting";
+  EXPECT_FALSE(v.rows[3].matched);
+  EXPECT_NE(sideBySideSection(run, "..").second.find("no match: default setting"), std::string::npos);
 }
 
 TEST(ReportCharts, HistogramsAndTimelinesAreOnePanelPerSchemeInAGrid) {

@@ -1,7 +1,8 @@
 #pragma once
 // `lodbench report <run-dir>` (docs/design.md, Reports and regression checks): report.md, Vega-Lite chart specs with
-// their data, and an HTML body, written into <run-dir>/report/; report/render.mjs (Node) then makes the self-contained
-// report.html and one SVG per chart. The harness itself never needs Node.
+// their data, and an HTML body, written into <run-dir>/report/; report/render.mjs (Node) then makes report.html
+// (offline; the run's images linked, or embedded with --self-contained) and one SVG per chart. The harness never needs
+// Node.
 #include <string>
 #include <vector>
 
