@@ -167,7 +167,7 @@ TEST(ReportSideBySide, OneFrameEverySchemeAtTheSettingNearestTheCommonError) {
       if (c.scheme != row.c->scheme || c.scenario != v.scenario || c.status != "ok") continue;
       double d = std::fabs(std::log(errorOf(c) / v.target));
       if (row.matched)
-        EXPECT_LE(std::fabs(std::log(row.error / v.target)), d + 1e-12) << c.id;
+        EXPECT_LE(std::fabs(std::log(*row.error / v.target)), d + 1e-12) << c.id;
       else
         EXPECT_GT(d, std::log(kMatchFactor)) << c.id;
     }

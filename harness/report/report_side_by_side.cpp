@@ -47,7 +47,8 @@ const ReportCase* defaultCase(const std::vector<const ReportCase*>& cases) {
 }
 
 std::string errorText(const SideBySideRow& r) {
-  return "mean error " + formatValue(r.error) + " px" + (r.frameError ? "" : " (case mean; frame not measured)");
+  if (!r.error) return "no error measured (the run had no error pass)";
+  return "mean error " + formatValue(*r.error) + " px" + (r.frameError ? "" : " (case mean; frame not measured)");
 }
 
 }  // namespace
@@ -85,9 +86,9 @@ SideBySide chooseSideBySide(const ReportRun& run) {
       double d = std::fabs(std::log(*e / out.target));
       if (d <= std::log(kMatchFactor) && (!pick || d < bestDistance)) pick = c, bestDistance = d;
     }
-    SideBySideRow row{pick ? pick : defaultCase(it->second), 0, false, pick != nullptr};
+    SideBySideRow row{pick ? pick : defaultCase(it->second), std::nullopt, false, pick != nullptr};
     auto [e, own] = errorAt(*row.c, out.frame);
-    row.error = e.value_or(0), row.frameError = own && e;
+    row.error = e, row.frameError = own && e;
     out.rows.push_back(row);
   }
   return out;
@@ -97,11 +98,14 @@ std::pair<std::string, std::string> sideBySideSection(const ReportRun& run, cons
   SideBySide v = chooseSideBySide(run);
   if (v.frame < 0) return {"", ""};
   const std::string f = std::to_string(v.frame);
-  std::string intro = "Frame " + f +
-                      ", every scheme. Each row shows the scheme's setting whose mean error on this frame " +
-                      "is within " + formatValue(kMatchFactor) + "x of " + formatValue(v.target) +
-                      " px (the median over the cases imaged here), the closest one; a scheme without such a setting " +
-                      "shows its default setting instead, marked \"no match\". Click an image to enlarge it.";
+  std::string intro = (run.scenarios.size() > 1 ? "Path " + v.scenario + ", frame " : "Frame ") + f +
+                      " (the frame with images of the most schemes), every scheme. ";
+  intro += v.target > 0 ? "Each row shows the scheme's setting whose mean error on this frame is within " +
+                              formatValue(kMatchFactor) + "x of " + formatValue(v.target) +
+                              " px (the median over the cases imaged here), the closest one; a scheme without such "
+                              "a setting shows its default setting instead, marked \"no match\"."
+                        : "No case imaged here has an error measurement: every scheme shows its default setting.";
+  intro += " Click an image to enlarge it.";
   std::string md = "\n## Side by side\n\n" + intro + "\n\n| scheme | setting | ";
   std::string html = "<h2 id=\"side-by-side\">Side by side</h2>\n<p>" + htmlEscape(intro) + "</p>\n";
   std::vector<std::string> modes;

@@ -2,6 +2,7 @@
 // The side-by-side view: one frame, every scheme, its shaded, heat-map and error images in a grid
 // (one row per scheme), each scheme at the setting whose error on that frame is closest to a common
 // target, and a "flip" viewer that toggles one image between two chosen schemes.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,9 +13,9 @@ namespace lb {
 
 struct SideBySideRow {
   const ReportCase* c = nullptr;
-  double error = 0;         // err_mean_px on the frame (or the case's mean when the frame has none)
-  bool frameError = false;  // error is the frame's own
-  bool matched = false;     // within kMatchFactor of the target; else the scheme's default setting
+  std::optional<double> error;  // err_mean_px on the frame (or the case's mean); none without an error pass
+  bool frameError = false;      // error is the frame's own
+  bool matched = false;         // within kMatchFactor of the target; else the scheme's default setting
 };
 
 struct SideBySide {
