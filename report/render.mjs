@@ -1,12 +1,15 @@
 // Renders a report directory written by `lodbench report` (manifest.json, body.html, charts/*.vl.json,
 // data/*.json) into
-//   report.html  one self-contained page: Vega, Vega-Lite and vega-embed inlined, chart specs with
-//                their data inlined, images embedded as data: URIs; opens offline.
+//   report.html  the page: Vega, Vega-Lite and vega-embed inlined, chart specs with their data
+//                inlined; run images linked where they lie (the run folder's images/, lazily loaded),
+//                so the page stays small and every image is stored once. With --self-contained the
+//                images are embedded as data: URIs instead: one file that opens anywhere, offline.
 //   svg/<id>.svg each chart drawn headless in Node (vega's View.toSVG), for papers.
 //   png/<id>.png the same SVG rasterized at 2x by Debian's chromium through playwright-core (vega's
 //                toCanvas would need node-canvas, a native module we do not install); without
 //                chromium or playwright-core, png/MISSING.txt says why and the page still renders.
-// Usage: node report/render.mjs <report-dir>     (set up once: bash scripts/install-report-deps.sh)
+// Usage: node report/render.mjs <report-dir> [--self-contained]
+//        (set up once: bash scripts/install-report-deps.sh)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -15,9 +18,12 @@ import * as vega from 'vega';
 import * as vl from 'vega-lite';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const dir = process.argv[2];
-if (!dir) {
-  console.error('usage: node report/render.mjs <report-dir>');
+const args = process.argv.slice(2);
+const selfContained = args.includes('--self-contained');
+const dir = args.find((a) => !a.startsWith('--'));
+const unknown = args.filter((a) => a.startsWith('--') && a !== '--self-contained');
+if (!dir || unknown.length) {
+  console.error(`usage: node report/render.mjs <report-dir> [--self-contained]${unknown.length ? ` (unknown option ${unknown[0]})` : ''}`);
   process.exit(2);
 }
 
@@ -34,12 +40,19 @@ const config = {
 
 const read = (file) => fs.readFileSync(path.join(dir, file), 'utf8');
 
-// Replaces every {"url": "data/x.json"} data source by its values, so a spec stands alone.
-function inlineData(node) {
-  if (Array.isArray(node)) return node.forEach(inlineData);
+// Replaces every {"url": "data/x.json"} data source by a named one whose values are written once into the
+// page (the three timelines share one data file), so a spec stands alone with its datasets.
+const datasets = {};
+function nameData(node, used) {
+  if (Array.isArray(node)) return node.forEach((n) => nameData(n, used));
   if (!node || typeof node !== 'object') return;
-  if (node.data && typeof node.data.url === 'string') node.data = {values: JSON.parse(read(node.data.url))};
-  Object.values(node).forEach(inlineData);
+  if (node.data && typeof node.data.url === 'string') {
+    const name = node.data.url;
+    datasets[name] ??= JSON.parse(read(name));
+    used.add(name);
+    node.data = {name};
+  }
+  Object.values(node).forEach((n) => nameData(n, used));
 }
 
 // Inline <script> and JSON must not contain "</script" (it would end the element early).
@@ -47,7 +60,8 @@ const scriptSafe = (text) => text.replace(/<\/(script)/gi, '<\\/$1');
 const jsonSafe = (value) => JSON.stringify(value).replace(/</g, '\\u003c');
 
 function embedImages(html) {
-  return html.replace(/<img src="([^"]+)"/g, (tag, src) => {
+  // loading="lazy" does not matter for data: URIs; the attribute stays harmless.
+  return html.replace(/<img src="([^"]+)"/g, (tag, src) => {  // imageTag() writes src first
     if (src.startsWith('data:')) return tag;
     const file = path.isAbsolute(src) ? src : path.join(dir, src.replace(/&amp;/g, '&'));
     if (!fs.existsSync(file)) {
@@ -60,15 +74,20 @@ function embedImages(html) {
 
 const manifest = JSON.parse(read('manifest.json'));
 const specs = {};
+const specData = {};  // chart id -> the dataset names its spec uses
 for (const chart of manifest.charts) {
   const spec = JSON.parse(read(chart.spec));
-  inlineData(spec);
+  const used = new Set();
+  nameData(spec, used);
   specs[chart.id] = spec;
+  specData[chart.id] = [...used];
 }
+const withData = (id) =>
+  ({...specs[id], datasets: Object.fromEntries(specData[id].map((name) => [name, datasets[name]]))});
 
 fs.mkdirSync(path.join(dir, 'svg'), {recursive: true});
-for (const [id, spec] of Object.entries(specs)) {
-  const view = new vega.View(vega.parse(vl.compile(spec, {config}).spec), {renderer: 'none'});
+for (const id of Object.keys(specs)) {
+  const view = new vega.View(vega.parse(vl.compile(withData(id), {config}).spec), {renderer: 'none'});
   fs.writeFileSync(path.join(dir, 'svg', `${id}.svg`), await view.toSVG());
   view.finalize();
 }
@@ -112,7 +131,7 @@ if (pngMissing) {
 }
 
 const lib = (p) => scriptSafe(fs.readFileSync(path.join(here, 'node_modules', p), 'utf8'));
-const body = embedImages(read('body.html'));
+const body = selfContained ? embedImages(read('body.html')) : read('body.html');
 const toc = [...body.matchAll(/<h2 id="([^"]+)">([^<]*)<\/h2>/g)]
   .map((m) => `<a href="#${m[1]}">${m[2]}</a>`)
   .join(' · ');
@@ -125,7 +144,7 @@ const html = `<!DOCTYPE html>
 <title>${manifest.title.replace(/</g, '&lt;')}</title>
 <style>
 body { font: 14px/1.45 'DejaVu Sans', Helvetica, Arial, sans-serif; color: #222; margin: 0 auto; padding: 16px 24px;
-       max-width: 1500px; }
+       max-width: 1400px; box-sizing: border-box; }
 h1 { font-size: 24px; margin: 8px 0; }
 h2 { font-size: 19px; margin: 28px 0 8px; border-bottom: 1px solid #ddd; padding-bottom: 4px; }
 nav { margin: 6px 0 12px; }
@@ -157,10 +176,14 @@ pre { background: #f6f6f6; padding: 8px; max-height: 400px; overflow: auto; }
 ${body.replace('</h1>', '</h1>\n<nav>' + toc + '</nav>')}
 <script>
 const specs = ${jsonSafe(specs)};
+const specData = ${jsonSafe(specData)};
+const datasets = ${jsonSafe(datasets)};
 const config = ${jsonSafe(config)};
 const actions = {export: true, source: false, compiled: false, editor: false};
-Promise.all(Object.entries(specs).map(([id, spec]) =>
-  vegaEmbed('#chart-' + id, spec, {renderer: 'svg', config, actions}).catch((e) => {
+const withData = (id) =>
+  ({...specs[id], datasets: Object.fromEntries(specData[id].map((name) => [name, datasets[name]]))});
+Promise.all(Object.keys(specs).map((id) =>
+  vegaEmbed('#chart-' + id, withData(id), {renderer: 'svg', config, actions}).catch((e) => {
     console.error('chart ' + id + ': ' + e);
     throw e;
   })))
@@ -171,6 +194,12 @@ Promise.all(Object.entries(specs).map(([id, spec]) =>
 </html>
 `;
 fs.writeFileSync(path.join(dir, 'report.html'), html);
-console.error(`render.mjs: ${path.join(dir, 'report.html')} (${(html.length / 1e6).toFixed(1)} MB), ` +
+const bytes = Buffer.byteLength(html);
+const linked = (body.match(/<img src="(?!data:)/g) || []).length;
+const images = (body.match(/<img /g) || []).length;
+if (linked + (body.match(/<img src="data:/g) || []).length !== images)
+  console.error(`render.mjs: ${images - linked} <img> without a leading src: not counted or embedded`);
+console.error(`render.mjs: ${path.join(dir, 'report.html')} (${(bytes / 1e6).toFixed(1)} MB, ${bytes} bytes, ` +
+              (selfContained ? 'self-contained: images embedded' : `${linked} images linked, not embedded`) + '), ' +
               `${Object.keys(specs).length} SVGs in ${path.join(dir, 'svg')}` +
               (pngMissing ? '' : `, PNGs in ${path.join(dir, 'png')}`));

@@ -158,7 +158,7 @@ TEST(ReportWrite, SpecsAreVegaLiteWithTheExpectedMarksAndFronts) {
   json cell = speed["vconcat"][1]["hconcat"][1];
   EXPECT_EQ(cell["title"], "lowalt \u00b7 p95 error");
   json layers = cell["layer"];
-  ASSERT_EQ(layers.size(), 3u) << "no errbound case: no reference-front layer";
+  ASSERT_EQ(layers.size(), 4u) << "no errbound case: no reference-front layer";
   EXPECT_EQ(layers[0]["mark"]["type"], "line");
   EXPECT_EQ(layers[0]["transform"][1]["filter"], "datum.on_front && !datum.errbound");
   EXPECT_EQ(layers[1]["mark"]["type"], "point");
@@ -172,9 +172,13 @@ TEST(ReportWrite, SpecsAreVegaLiteWithTheExpectedMarksAndFronts) {
   EXPECT_EQ(layers[1]["encoding"]["color"]["scale"]["domain"], json({"uniform", "sphere", "phong"}));
   EXPECT_EQ(layers[1]["encoding"]["color"]["scale"]["range"],
             json({schemeColour("uniform"), schemeColour("sphere"), schemeColour("phong")}));
+  // Each point labelled with its parameter value, in the page and in the SVG/PNG exports.
   EXPECT_EQ(layers[2]["mark"]["type"], "text");
-  EXPECT_EQ(layers[2]["encoding"]["y"]["value"], "height");  // lower-left corner
-  EXPECT_NE(layers[2]["mark"]["text"].get<std::string>().find("better (faster"), std::string::npos);
+  EXPECT_EQ(layers[2]["encoding"]["text"]["field"], "value");
+  EXPECT_EQ(layers[2]["encoding"]["x"]["field"], "err_px");
+  EXPECT_EQ(layers[3]["mark"]["type"], "text");
+  EXPECT_EQ(layers[3]["encoding"]["y"]["value"], "height");  // lower-left corner
+  EXPECT_NE(layers[3]["mark"]["text"].get<std::string>().find("better (faster"), std::string::npos);
 
   // Fronts: within a scheme, path and error kind, a point is on the front iff nothing dominates it.
   json rows = readJson(dir / "data/speed_gpu_ms.json");

@@ -178,14 +178,25 @@ TEST(ReportAxes, Log2AxisTicksEveryGrid) {
   EXPECT_EQ(scaleJson(d)["base"], 2);
 }
 
-TEST(ReportStyle, EverySchemeHasItsOwnFixedColour) {
-  std::set<std::string> colours, names;
-  for (auto& s : schemeStyles()) {
+TEST(ReportStyle, EverySchemeHasItsOwnFixedColourAndShape) {
+  std::set<std::string> colours, shapes, names;
+  std::vector<SchemeStyle> all = schemeStyles();
+  all.insert(all.end(), spareSchemeStyles().begin(), spareSchemeStyles().end());
+  for (auto& s : all) {
     EXPECT_TRUE(std::regex_match(std::string(s.colour), std::regex("#[0-9A-Fa-f]{6}"))) << s.scheme;
     colours.insert(s.colour);
-    names.insert(s.scheme);
+    shapes.insert(s.shape);
+    if (*s.scheme) names.insert(s.scheme);
   }
-  EXPECT_EQ(colours.size(), schemeStyles().size()) << "two schemes share a colour";
+  EXPECT_EQ(all.size(), 20u) << "room for 20 schemes";
+  EXPECT_EQ(colours.size(), all.size()) << "two schemes share a colour";
+  EXPECT_EQ(shapes.size(), all.size()) << "two schemes share a point shape";
+  // Vega's "triangle" is its "triangle-up": one of them only.
+  EXPECT_FALSE(shapes.count("triangle") && shapes.count("triangle-up"));
+  // A name without an entry takes a spare style, the same every time.
+  const std::string spare = schemeShape("not-a-scheme");
+  EXPECT_TRUE(std::any_of(spareSchemeStyles().begin(), spareSchemeStyles().end(),
+                          [&](const SchemeStyle& s) { return spare == s.shape; }));
   for (const Scheme* s : allSchemes()) EXPECT_TRUE(names.count(s->info().name)) << s->info().name << " has no colour";
   EXPECT_EQ(schemeColour("errbound"), "#000000");
   // An unknown name: a valid colour, the same every time, not black (the reference front's).
@@ -307,7 +318,12 @@ TEST(ReportCharts, ScaleChartsOnlyWhereTheRunVariesThem) {
   EXPECT_EQ(charts[0].data.size(), 3u) << "uniform's single level is no line";
   auto p = layersWith(charts[0].spec, [](const json& o) { return o["mark"].value("type", "") == "line"; });
   ASSERT_FALSE(p.empty());
-  EXPECT_EQ(p[0]["encoding"]["x"]["title"].get<std::string>().rfind("max_error_px (errbound)", 0), 0u);
+  EXPECT_EQ(p[0]["encoding"]["x"]["title"].get<std::string>().rfind("max_error_px", 0), 0u);
+  // Small multiples: one panel per scheme and parameter, wrapped, titled by both.
+  const json& wrapped = charts[0].spec["vconcat"][0];
+  EXPECT_EQ(wrapped["columns"], kPanelColumns);
+  ASSERT_EQ(wrapped["concat"].size(), 1u);
+  EXPECT_EQ(wrapped["concat"][0]["title"]["text"], "max_error_px (errbound)");
 
   // Nothing varies: no scale chart.
   EXPECT_TRUE(scaleCharts(makeRun({makeCase("uniform", {{"level", 8}}, "flyover", 320, 180, 32, 1, 5e4)})).empty());

@@ -295,6 +295,8 @@ int main(int argc, char** argv) {
   report->add_option("--frames", rep.frames, "Frames for the image strips, e.g. 0,240 (default: all with images)")
       ->delimiter(',');
   report->add_flag("--no-html", noHtml, "Write Markdown and chart specs only (do not run report/render.mjs)");
+  report->add_flag("--self-contained", rep.selfContained,
+                   "Embed the run's images in report.html: one file to send, many times larger (prints its size)");
   // compare / ab / gbench (docs/design.md, Reports and regression checks): regression checks and Google Benchmark JSON.
   auto* compare = app.add_subcommand("compare", "Check a candidate run against a baseline; exit 1 on a regression");
   std::string baselineDir;

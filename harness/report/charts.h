@@ -43,13 +43,15 @@ std::string chartFilesHtml(const Chart& c);
 // --- Scheme colours (charts_style.cpp) ---------------------------------------------------------
 // One fixed colour and point shape per scheme, the same in every chart, report and legend: Paul
 // Tol's colour-blind-safe "muted" palette, black for the error-bounded reference front, grey for the
-// uniform baseline. Names not in the table get a deterministic Okabe-Ito colour from a hash.
+// uniform baseline; no two schemes share a colour or a shape. Room for 20: a scheme not in the table
+// takes one of six spare styles, in registry order, or (not registered) one picked by a hash.
 struct SchemeStyle {
   const char* scheme;
   const char* colour;  // "#rrggbb"
-  const char* shape;   // Vega point shape
+  const char* shape;   // Vega point shape: a built-in name or an SVG path in the unit square
 };
 const std::vector<SchemeStyle>& schemeStyles();
+const std::vector<SchemeStyle>& spareSchemeStyles();  // scheme == "": taken by schemes without an entry
 std::string schemeColour(const std::string& scheme);
 std::string schemeShape(const std::string& scheme);
 
@@ -58,6 +60,24 @@ std::vector<std::string> chartSchemes(const ReportRun& run);
 // Colour and shape encodings by scheme over chartSchemes(run), with the fixed table's values.
 nlohmann::json schemeColor(const ReportRun& run);
 nlohmann::json schemeShapeEncoding(const ReportRun& run);
+
+// --- Small multiples (charts_panels.cpp) --------------------------------------------------------
+// Panels per scheme (and path when the run has several), in scheme order, wrapped kPanelColumns to
+// a row; a panel's settings are coloured by rank (1 = smallest value) with one fixed ramp.
+constexpr int kPanelColumns = 4;
+constexpr int kPanelWidth = 240;  // 4 panels with their axes fit the 1,400 px page
+std::string panelOf(const ReportRun& run, const ReportCase& c);
+std::vector<std::string> panelOrder(const ReportRun& run);
+// 1-based rank of the case's setting among its scheme's finished settings (run.paramLabels order).
+int settingRank(const ReportRun& run, const ReportCase& c);
+// "tri_size 2 / 4 / 8": the parameters that vary between the scheme's settings, in rank order.
+std::string settingsTitle(const ReportRun& run, const std::string& scheme);
+// The case's values of the parameters that vary within its scheme ("4"; "4, 0.5"): point labels.
+std::string settingLabel(const ReportRun& run, const ReportCase& c);
+// Colour encoding of the data column "setting" (the rank), legend above the panels.
+nlohmann::json settingColor(const ReportRun& run);
+// Facet over the data column "panel", headers naming each panel's settings.
+nlohmann::json panelFacet(const ReportRun& run);
 
 // --- Axes (charts_axes.cpp) --------------------------------------------------------------------
 // Positive data spanning more than this many decades is drawn on a log axis.

@@ -16,26 +16,20 @@ struct Series {
   const char* id;
   const char* field;  // per-frame record key
   const char* title;
-  const char* axis;  // y-axis title with unit
+  const char* axis;  // y-axis title with unit, short: it repeats on every row of panels
+  const char* what;  // the subtitle's definition of the value
   bool measured;     // only on measurement frames: draw points as well as lines
 };
 constexpr Series kSeries[] = {
-    {"timeline_gpu_ms", "gpu_ms", "GPU time along each path", "GPU time (ms)", false},
-    {"timeline_triangles", "clip_invocations", "Triangles along each path", "triangles (clipper input)", false},
-    {"timeline_error", "err_mean_px", "Screen-space error along each path", "error (px, mean over terrain pixels)",
-     true},
+    {"timeline_gpu_ms", "gpu_ms", "GPU time along each path", "GPU ms", "GPU time of the frame (ms)", false},
+    {"timeline_triangles", "clip_invocations", "Triangles along each path", "triangles",
+     "triangles reaching the clipper per frame", false},
+    {"timeline_error", "err_mean_px", "Screen-space error along each path", "mean error px",
+     "mean screen-space error over terrain pixels (px)", true},
 };
 
 std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"
   return exponent < 0 ? "1/" + std::to_string(1 << -exponent) : std::to_string(1 << exponent);
-}
-
-json facetByScenario(const ReportRun& run) {
-  return {{"field", "scenario"},
-          {"type", "nominal"},
-          {"title", "camera path"},
-          {"sort", run.scenarios},
-          {"header", {{"labelFontSize", 13}}}};
 }
 
 json timelineSpec(const ReportRun& run, const Series& s, const std::string& yScale) {
@@ -44,7 +38,7 @@ json timelineSpec(const ReportRun& run, const Series& s, const std::string& ySca
             {"title", "frame"},
             {"axis", {{"format", "d"}, {"tickMinStep", 1}}}};
   json y = {{"field", s.field}, {"type", "quantitative"}, {"title", s.axis}, {"scale", valueScale(yScale)}};
-  // Each path keeps its own y domain, so ticks cannot be fixed here: a log axis gets decades and
+  // Vega picks the shared y domain, so ticks cannot be fixed here: a log axis gets decades and
   // their 2s and 5s (Vega's default draws every 1..9 x 10^k).
   if (yScale == "log") {
     y["title"] = std::string(s.axis) + " (log)";
@@ -53,33 +47,28 @@ json timelineSpec(const ReportRun& run, const Series& s, const std::string& ySca
                     500,   1e3,   2e3,   5e3,  1e4,  2e4,  5e4, 1e5, 2e5, 5e5, 1e6, 2e6, 5e6, 1e7, 2e7, 5e7, 1e8}},
         {"format", "~f"}};
   }
-  json encoding = {
-      {"x", x},
-      {"y", y},
-      {"color", schemeColor(run)},
-      {"strokeDash", {{"field", "params"}, {"type", "nominal"}, {"title", "parameters"}, {"sort", run.paramLabels}}},
-      {"detail", {{"field", "case_id"}, {"type", "nominal"}}},
-      {"tooltip", json::array({{{"field", "label"}, {"title", "case"}},
-                               {{"field", "frame"}},
-                               {{"field", s.field}, {"title", s.axis}, {"format", ".4~g"}}})}};
+  json encoding = {{"x", x},
+                   {"y", y},
+                   {"color", settingColor(run)},
+                   {"detail", {{"field", "case_id"}, {"type", "nominal"}}},
+                   {"tooltip", json::array({{{"field", "label"}, {"title", "case"}},
+                                            {{"field", "frame"}},
+                                            {{"field", s.field}, {"title", s.axis}, {"format", ".4~g"}}})}};
   json layers = json::array(
       {{{"mark", {{"type", "line"}, {"strokeWidth", 1.5}, {"interpolate", "linear"}}}, {"encoding", encoding}}});
-  if (s.measured) {
-    json points = encoding;
-    points.erase("strokeDash");
-    layers.push_back({{"mark", {{"type", "point"}, {"filled", true}, {"size", 30}}}, {"encoding", points}});
-  }
+  if (s.measured)
+    layers.push_back({{"mark", {{"type", "point"}, {"filled", true}, {"size", 24}}}, {"encoding", encoding}});
+  // One panel per scheme with its few settings, on one shared y axis: schemes compare across panels.
   return {{"$schema", kVegaLiteSchema},
           {"title",
            {{"text", s.title},
-            {"subtitle", s.measured ? "measured frames only; colour: scheme, dash: parameters"
-                                    : "every timed frame; colour: scheme, dash: parameters"}}},
+            {"subtitle", std::string(s.what) + ", " + (s.measured ? "measured frames only" : "every timed frame") +
+                             "; one panel per scheme, colour: its setting"}}},
           {"data", {{"url", "data/timeline.json"}}},
           {"transform", {{{"filter", std::string("isValid(datum.") + s.field + ")"}}}},
-          {"facet", facetByScenario(run)},
-          {"columns", 2},
-          {"spec", {{"width", 380}, {"height", 200}, {"layer", layers}}},
-          {"resolve", {{"scale", {{"y", "independent"}}}}}};
+          {"facet", panelFacet(run)},
+          {"columns", kPanelColumns},
+          {"spec", {{"width", kPanelWidth}, {"height", 130}, {"layer", layers}}}};
 }
 
 }  // namespace
@@ -115,6 +104,8 @@ Chart histogramChart(const ReportRun& run) {
                             {"params", c.paramsLabel},
                             {"label", c.label},
                             {"scenario", c.scenario},
+                            {"panel", panelOf(run, c)},
+                            {"setting", settingRank(run, c)},
                             {"bin", labels[i]},
                             {"bin_index", i},
                             {"triangles", n},
@@ -138,17 +129,11 @@ Chart histogramChart(const ReportRun& run) {
        {{"text", chart.title},
         {"subtitle", "share of on-screen, front-facing triangles per area bin, summed over measured frames"}}},
       {"data", {{"url", "data/" + chart.dataName + ".json"}}},
-      {"facet",
-       {{"row", facetByScenario(run)},
-        {"column",
-         {{"field", "scheme"},
-          {"type", "nominal"},
-          {"title", "scheme"},
-          {"sort", run.schemes},
-          {"header", {{"labelFontSize", 13}}}}}}},
+      {"facet", panelFacet(run)},
+      {"columns", kPanelColumns},
       {"spec",
-       {{"width", 300},
-        {"height", 160},
+       {{"width", kPanelWidth},
+        {"height", 150},
         {"mark", {{"type", "bar"}, {"tooltip", true}}},
         {"encoding",
          {{"x",
@@ -157,13 +142,9 @@ Chart histogramChart(const ReportRun& run) {
             {"sort", labels},
             {"title", "triangle area on screen (px²)"},
             {"axis", {{"labelAngle", -45}}}}},
-          {"xOffset", {{"field", "params"}, {"type", "nominal"}, {"sort", run.paramLabels}}},
+          {"xOffset", {{"field", "setting"}, {"type", "ordinal"}}},
           {"y", {{"field", "share"}, {"type", "quantitative"}, {"title", "share of triangles (%)"}}},
-          {"color",
-           {{"field", "params"},
-            {"type", "nominal"},
-            {"title", "parameters"},
-            {"scale", {{"domain", run.paramLabels}, {"scheme", "dark2"}}}}},
+          {"color", settingColor(run)},
           {"tooltip", tooltip}}}}},
       // Each cell offsets only its own scheme's settings, so bars keep their width.
       {"resolve", {{"scale", {{"xOffset", "independent"}}}}}};
@@ -174,9 +155,12 @@ std::vector<Chart> timelineCharts(const ReportRun& run) {
   json rows = json::array();
   for (auto& c : run.cases) {
     if (c.status != "ok") continue;
+    const int setting = settingRank(run, c);
     for (auto& f : c.frames) {
-      json row = {{"case_id", c.id},  {"scheme", c.scheme},     {"params", c.paramsLabel},
-                  {"label", c.label}, {"scenario", c.scenario}, {"frame", frameValue(f, "frame").value_or(0)}};
+      json row = {{"case_id", c.id},         {"scheme", c.scheme},
+                  {"params", c.paramsLabel}, {"label", c.label},
+                  {"scenario", c.scenario},  {"panel", panelOf(run, c)},
+                  {"setting", setting},      {"frame", frameValue(f, "frame").value_or(0)}};
       for (const Series& s : kSeries) {
         auto v = frameValue(f, s.field);
         row[s.field] = v ? json(*v) : json(nullptr);

@@ -67,6 +67,67 @@ std::vector<Point> varying(std::vector<Point> points) {
   return points;
 }
 
+// Each scheme's own parameter: small multiples, one panel per scheme and parameter wrapped
+// kPanelColumns to a row, one grid for GPU time (median solid, p95 dashed) and one for triangles,
+// each on one shared y axis so panels compare; the x axis is the panel's parameter.
+json perSchemeGrids(const ReportRun& run, const Variable& v, const std::vector<std::string>& rows,
+                    std::map<std::string, std::vector<double>>& xOf,
+                    std::map<std::pair<std::string, std::string>, std::vector<double>>& yOf,
+                    const std::function<AxisDomain(const std::vector<double>&)>& xDomain) {
+  struct Grid {
+    const char* title;
+    std::vector<const Metric*> lines;  // first solid, second dashed
+  };
+  const Grid grids[] = {{"GPU time (ms/frame): median solid, p95 dashed", {&kMetrics[0], &kMetrics[1]}},
+                        {"triangles/frame, median", {&kMetrics[2]}}};
+  json out = json::array();
+  for (const Grid& g : grids) {
+    std::vector<double> all;
+    for (auto& r : rows)
+      for (auto* m : g.lines) all.insert(all.end(), yOf[{r, m->field}].begin(), yOf[{r, m->field}].end());
+    if (all.empty()) continue;
+    AxisDomain yd = niceDomain(all);
+    json panels = json::array();
+    for (auto& r : rows) {
+      json x = positionEncoding("x", r.substr(0, r.find(" (")), xDomain(xOf[r]));
+      json layers = json::array();
+      for (size_t i = 0; i < g.lines.size(); ++i) {
+        const Metric& m = *g.lines[i];
+        // One title for the layers (Vega-Lite joins differing ones with commas).
+        json y = positionEncoding(m.field, g.lines.size() > 1 ? "GPU ms/frame" : "triangles/frame", yd);
+        json line = {{"type", "line"}, {"strokeWidth", 1.75}};
+        if (i > 0) line["strokeDash"] = {5, 3};
+        json tip = json::array({{{"field", "case_id"}, {"title", "case"}},
+                                {{"field", "params"}, {"title", "parameters"}},
+                                {{"field", m.field}, {"title", m.axis}, {"format", ".4~g"}}});
+        json enc = {
+            {"x", x}, {"y", y}, {"color", schemeColor(run)}, {"detail", {{"field", "series"}, {"type", "nominal"}}}};
+        layers.push_back(
+            {{"transform", {{{"filter", {{"valid", true}, {"field", m.field}}}}}}, {"mark", line}, {"encoding", enc}});
+        json pts = enc;
+        pts.erase("detail");
+        pts["shape"] = schemeShapeEncoding(run);
+        pts["tooltip"] = tip;
+        layers.push_back({{"transform", {{{"filter", {{"valid", true}, {"field", m.field}}}}}},
+                          {"mark", {{"type", "point"}, {"filled", true}, {"size", 45}}},
+                          {"encoding", pts}});
+      }
+      panels.push_back({{"title", {{"text", r}, {"fontSize", 12}}},
+                        {"width", kPanelWidth - 20},
+                        {"height", 130},
+                        {"transform", {{{"filter", {{"field", "row"}, {"equal", r}}}}}},
+                        {"layer", layers}});
+    }
+    out.push_back({{"title", g.title}, {"columns", kPanelColumns}, {"concat", panels}});
+  }
+  return {{"$schema", kVegaLiteSchema},
+          {"title", {{"text", v.title}, {"subtitle", v.what}}},
+          {"data", {{"url", "data/" + v.id + ".json"}}},
+          {"vconcat", out},
+          {"config", {{"legend", {{"orient", "top"}, {"direction", "horizontal"}, {"columns", 7}}}}},
+          {"resolve", {{"scale", {{"color", "shared"}, {"shape", "shared"}}}}}};
+}
+
 Chart build(const ReportRun& run, const Variable& v, const std::vector<Point>& points,
             const std::function<AxisDomain(const std::vector<double>&)>& xDomain) {
   Chart chart;
@@ -95,6 +156,10 @@ Chart build(const ReportRun& run, const Variable& v, const std::vector<Point>& p
     }
     xOf[v.perRow ? p.row : ""].push_back(p.x);
     chart.data.push_back(row);
+  }
+  if (v.perRow) {
+    chart.spec = perSchemeGrids(run, v, rows, xOf, yOf, xDomain);
+    return chart;
   }
   json vrows = json::array();
   for (auto& r : rows) {
@@ -209,7 +274,9 @@ std::vector<Chart> scaleCharts(const ReportRun& run) {
     }
   if (auto p = varying(points); !p.empty()) {
     Variable v{"scale_param", "Cost vs each scheme's parameter", "",
-               "one panel row per scheme and swept parameter, one line per path and setting of the others", true};
+               "one panel per scheme and swept parameter (its values on the x axis), one line per path and setting "
+               "of the others; panels share the y axis",
+               true};
     charts.push_back(build(run, v, p, [](const std::vector<double>& xs) { return niceDomain(xs); }));
   }
   return charts;

@@ -80,6 +80,11 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
        {"mark", {{"type", "point"}, {"filled", true}, {"size", 70}, {"opacity", 0.9}}},
        {"encoding",
         {{"x", x}, {"y", y}, {"color", color}, {"shape", schemeShapeEncoding(run)}, {"tooltip", tooltip}}}});
+  // Each point's parameter value beside it, so a printed chart says which setting is which.
+  layers.push_back(
+      {{"transform", {cell}},
+       {"mark", {{"type", "text"}, {"align", "left"}, {"dx", 6}, {"dy", -5}, {"fontSize", 9}, {"color", "#333"}}},
+       {"encoding", {{"x", x}, {"y", y}, {"text", {{"field", "value"}, {"type", "nominal"}}}}}});
   layers.push_back({{"data", {{"values", json::array({json::object()})}}},
                     {"mark",
                      {{"type", "text"},
@@ -93,7 +98,7 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
                       {"color", "#2e7d32"}}},
                     {"encoding", {{"x", {{"value", 0}}}, {"y", {{"value", "height"}}}}}});
   std::string title = titleScenario ? scenario + " \u00b7 " + err.label : std::string(err.label);
-  return {{"title", title}, {"width", 320}, {"height", 250}, {"layer", layers}};
+  return {{"title", title}, {"width", 460}, {"height", 320}, {"layer", layers}};
 }
 
 }  // namespace
@@ -139,6 +144,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
           chart.data.push_back({{"case_id", c.id},
                                 {"scheme", c.scheme},
                                 {"params", c.paramsLabel},
+                                {"value", settingLabel(run, c)},
                                 {"scenario", c.scenario},
                                 {"error", err.label},
                                 {"err_px", xs[i]},
@@ -174,8 +180,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
       rows.push_back({{"hconcat", row}});
     }
     json subtitle =
-        json::array({"one point per case; solid lines: each scheme's Pareto front (no other setting of "
-                     "the scheme is both cheaper and more accurate)"});
+        json::array({"one point per case, labelled with its parameter value; solid lines: each scheme's Pareto "
+                     "front (no other setting of the scheme is both cheaper and more accurate)"});
     if (!boundIn.empty())
       subtitle.push_back("dashed: " + boundScheme + "'s sweep over " + boundParam + ", the reference front");
     chart.spec = {{"$schema", kVegaLiteSchema},

@@ -1,16 +1,46 @@
 // Scheme colours and shapes shared by every chart and legend, and the links to a chart's files.
-// Colours: Paul Tol's "muted" qualitative scheme (https://personal.sron.nl/~pault/), designed to
-// stay distinct under the common colour-vision deficiencies; each scheme also has its own point
-// shape, so no chart relies on hue alone.
+// Colours: mostly Paul Tol's "muted" qualitative scheme (https://personal.sron.nl/~pault/), designed
+// to stay distinct under the common colour-vision deficiencies; each scheme also has its own point
+// shape (no two alike, 20 in all), so no chart relies on hue alone and a grey print still tells
+// them apart.
 #include <algorithm>
 #include <cstdint>
 
 #include "report/charts.h"
 #include "report/table.h"
+#include "schemes/registry.h"
 
 namespace lb {
 
 using nlohmann::json;
+
+namespace {
+
+// Point shapes beyond Vega's built-in ones (its thin "wedge", "arrow" and "stroke" read as lines), as SVG paths in
+// Vega's unit square (-1..1).
+constexpr const char* kStar =
+    "M0,-1L0.2245,-0.309L0.951,-0.309L0.3633,0.118L0.5878,0.809L0,0.382L-0.5878,0.809L-0.3633,0.118L-0.951,-0.309L-"
+    "0.2245,-0.309Z";
+constexpr const char* kPentagon = "M0,-1L0.951,-0.309L0.588,0.809L-0.588,0.809L-0.951,-0.309Z";
+constexpr const char* kHexagon = "M0,-1L0.866,-0.5L0.866,0.5L0,1L-0.866,0.5L-0.866,-0.5Z";
+constexpr const char* kX = "M-1,-0.6L-0.6,-1L0,-0.4L0.6,-1L1,-0.6L0.4,0L1,0.6L0.6,1L0,0.4L-0.6,1L-1,0.6L-0.4,0Z";
+constexpr const char* kBowtie = "M-1,-1L0,0L-1,1ZM1,-1L0,0L1,1Z";
+constexpr const char* kHourglass = "M-1,-1L1,-1L0,0ZM-1,1L1,1L0,0Z";
+constexpr const char* kHalfDisc = "M-1,0.4A1,1 0 0 1 1,0.4Z";
+constexpr const char* kTrapezoid = "M-0.5,-0.8L0.5,-0.8L1,0.8L-1,0.8Z";
+constexpr const char* kChevron = "M-1,-0.8L0,0.2L1,-0.8L1,0L0,1L-1,0Z";
+constexpr const char* kTee = "M-1,-1H1V-0.4H0.3V1H-0.3V-0.4H-1Z";
+// Rings: an outer outline and an inner one wound the other way, so the middle stays empty.
+constexpr const char* kRing =
+    "M0,-1A1,1 0 1 1 0,1A1,1 0 1 1 0,-1ZM0,-0.45A0.45,0.45 0 1 0 0,0.45A0.45,0.45 0 1 0 0,-0.45Z";
+constexpr const char* kFrame = "M-1,-1H1V1H-1ZM-0.45,-0.45V0.45H0.45V-0.45Z";
+
+// Room for 20 schemes: the registered ones by name, then six spare styles that a scheme without an
+// entry takes in registry order (a scheme added before its entry) or, when not registered, by hash.
+const SchemeStyle kSpare[] = {{"", "#EE3377", kBowtie},    {"", "#CC3311", kHourglass}, {"", "#B8860B", kHalfDisc},
+                              {"", "#6699CC", kTrapezoid}, {"", "#663333", kChevron},   {"", "#66AA55", kTee}};
+
+}  // namespace
 
 const std::vector<SchemeStyle>& schemeStyles() {
   static const std::vector<SchemeStyle> table = {
@@ -22,24 +52,23 @@ const std::vector<SchemeStyle>& schemeStyles() {
       {"distance", "#999933", "diamond"},
       {"interlock", "#DDCC77", "triangle-right"},
       {"density", "#CC6677", "triangle-left"},
-      {"planefit", "#882255", "wedge"},
-      {"phong", "#AA4499", "triangle"},
-      {"errbound", "#000000", "circle"},  // black: its sweep is the dashed reference front
-      // The instanced-grid schemes: the CDLOD pair in related teals, clipmaps in orange.
-      {"cdlod", "#009988", "square"},
-      {"cdlod-sse", "#005F56", "diamond"},
-      {"clipmap", "#EE7733", "cross"},
+      {"planefit", "#882255", kRing},
+      {"phong", "#AA4499", kStar},
+      {"errbound", "#000000", kX},  // black: its sweep is the dashed reference front
+      // The instanced-grid schemes: the CDLOD pair in blue and dark teal, clipmaps in orange.
+      {"cdlod", "#0077BB", kHexagon},
+      {"cdlod-sse", "#005F56", kPentagon},
+      {"clipmap", "#EE7733", kFrame},
   };
   return table;
 }
 
-namespace {
-
-const SchemeStyle* findStyle(const std::string& scheme) {
-  for (auto& s : schemeStyles())
-    if (scheme == s.scheme) return &s;
-  return nullptr;
+const std::vector<SchemeStyle>& spareSchemeStyles() {
+  static const std::vector<SchemeStyle> spare(std::begin(kSpare), std::end(kSpare));
+  return spare;
 }
+
+namespace {
 
 // FNV-1a: a fixed hash (std::hash may differ between standard libraries).
 uint32_t fnv1a(const std::string& s) {
@@ -48,19 +77,28 @@ uint32_t fnv1a(const std::string& s) {
   return h;
 }
 
+const SchemeStyle& styleOf(const std::string& scheme) {
+  for (auto& s : schemeStyles())
+    if (scheme == s.scheme) return s;
+  size_t unstyled = 0;  // registered schemes without an entry, in registry order
+  for (const Scheme* r : allSchemes()) {
+    const std::string& name = r->info().name;
+    bool styled = std::any_of(schemeStyles().begin(), schemeStyles().end(), [&](auto& s) { return name == s.scheme; });
+    if (styled) continue;
+    if (name == scheme && unstyled < std::size(kSpare)) return kSpare[unstyled];
+    ++unstyled;
+  }
+  return kSpare[fnv1a(scheme) % std::size(kSpare)];
+}
+
 }  // namespace
 
 std::string schemeColour(const std::string& scheme) {
-  if (auto* s = findStyle(scheme)) return s->colour;
-  // Okabe-Ito, without its black and yellow (taken, and unreadable on white).
-  static const char* const fallback[] = {"#E69F00", "#56B4E9", "#009E73", "#0072B2", "#D55E00", "#CC79A7"};
-  return fallback[fnv1a(scheme) % 6];
+  return styleOf(scheme).colour;
 }
 
 std::string schemeShape(const std::string& scheme) {
-  if (auto* s = findStyle(scheme)) return s->shape;
-  static const char* const fallback[] = {"circle", "square", "diamond", "cross"};
-  return fallback[fnv1a(scheme) % 4];
+  return styleOf(scheme).shape;
 }
 
 std::vector<std::string> chartSchemes(const ReportRun& run) {

@@ -24,7 +24,21 @@ aside.howto div { margin: 2px 0; }
 table.grid td.num a { color: inherit; display: block; text-decoration: none; }
 table.grid td.num { min-width: 4em; }
 table.scenario tr:target { outline: 3px solid #f0b400; }
-.shot img { width: 640px; max-width: 100%; height: auto; cursor: zoom-in; }
+.shot img { width: 320px; max-width: 100%; height: auto; cursor: zoom-in; }
+a.def { color: inherit; text-decoration: underline dotted #888; }
+dl.glossary { display: grid; grid-template-columns: 220px 1fr; gap: 2px 12px; font-size: 13px; }
+dl.glossary dt { font-weight: bold; }
+dl.glossary dd { margin: 0; }
+dl.glossary dt:target, dl.glossary dt:target + dd { background: #fff3c4; }
+.side-grid { display: grid; gap: 6px; align-items: center; margin: 8px 0; }
+.side-head { font-weight: bold; text-align: center; }
+.side-label { font-size: 12px; }
+.side-shot img { width: 320px; }
+.flip-row { display: flex; gap: 24px; align-items: flex-start; }
+.flip-row .legends { flex-direction: column; margin-top: 40px; }
+.flip { margin: 8px 0 14px; }
+.flip-controls { margin-bottom: 6px; font-size: 13px; }
+.flip img { width: 640px; max-width: 100%; height: auto; image-rendering: pixelated; border: 1px solid #ccc; }
 .legend { display: flex; align-items: center; gap: 6px; font-size: 11.5px; color: #444; margin-top: 2px; }
 .legend .bar { width: 220px; height: 12px; border: 1px solid #999; }
 .legend .ticks { display: flex; justify-content: space-between; width: 220px; }
@@ -58,6 +72,28 @@ const char* const kScript = R"(<script>
   });
   document.addEventListener('keydown', (e) => { if (e.key === 'Escape') close(); });
 })();
+// The side-by-side flip: one image showing scheme A or B in the chosen mode. Its pictures are the
+// grid's own <img> elements (data-scheme, data-mode), so it works with linked and embedded images.
+// This script runs at the top of the body: it waits for the elements below it.
+document.addEventListener('DOMContentLoaded', () => {
+  const $ = (id) => document.getElementById(id);
+  const view = document.querySelector('#flip img');
+  if (!view) return;
+  let showB = false;
+  const show = () => {
+    const scheme = $(showB ? 'flip-b' : 'flip-a').value, mode = $('flip-mode').value;
+    const src = [...document.querySelectorAll('.side-grid img')].find(
+        (i) => i.dataset.scheme === scheme && i.dataset.mode === mode);
+    if (src) { view.src = src.currentSrc || src.src; view.alt = scheme + ' ' + mode; }
+    $('flip-showing').textContent = scheme + (src ? '' : ' (no ' + mode + ' image)');
+  };
+  const flip = () => { showB = !showB; show(); };
+  $('flip-button').addEventListener('click', flip);
+  ['flip-a', 'flip-b', 'flip-mode'].forEach((id) => $(id).addEventListener('change', show));
+  document.addEventListener('keydown', (e) => {
+    if ((e.key === 'f' || e.key === 'F') && !/^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName)) flip();
+  });
+});
 </script>
 )";
 

@@ -1,6 +1,7 @@
 #pragma once
 // What body.html brings of its own on top of report/render.mjs's page: the page's layout rules
-// (tables that fit 1400 px, large images) and the click-to-enlarge viewer, inline (no network).
+// (tables that fit 1400 px, image sizes), the click-to-enlarge viewer and the side-by-side flip,
+// inline (no network).
 #include <string>
 
 namespace lb {

@@ -125,8 +125,9 @@ std::string renderUnavailableReason() {
   return "";
 }
 
-int renderHtml(const std::string& reportDir) {
-  std::string cmd = "node " + shellQuote(reportScriptDir() + "/render.mjs") + " " + shellQuote(reportDir);
+int renderHtml(const std::string& reportDir, bool selfContained) {
+  std::string cmd = "node " + shellQuote(reportScriptDir() + "/render.mjs") + " " + shellQuote(reportDir) +
+                    (selfContained ? " --self-contained" : "");
   int status = std::system(cmd.c_str());
   return status == -1 ? 1 : WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
@@ -146,11 +147,16 @@ int reportCommand(const ReportOptions& options) {
                  why.c_str(), r.dir.c_str());
     return 0;
   }
-  int rc = renderHtml(r.dir);
+  int rc = renderHtml(r.dir, options.selfContained);
   if (rc != 0) {
     std::fprintf(stderr, "lodbench: report/render.mjs failed (exit %d)\n", rc);
     return 1;
   }
+  std::error_code ec;
+  auto bytes = fs::file_size(fs::path(r.dir) / "report.html", ec);
+  if (!ec)
+    std::fprintf(stderr, "lodbench: report.html is %.1f MB (%ju bytes)%s\n", double(bytes) / 1e6, uintmax_t(bytes),
+                 options.selfContained ? ", self-contained (images embedded)" : "; it links the run's images/");
   std::printf("%s/report.html\n", r.dir.c_str());
   return 0;
 }

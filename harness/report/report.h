@@ -1,7 +1,8 @@
 #pragma once
 // `lodbench report <run-dir>` (docs/design.md, Reports and regression checks): report.md, Vega-Lite chart specs with
-// their data, and an HTML body, written into <run-dir>/report/; report/render.mjs (Node) then makes the self-contained
-// report.html and one SVG per chart. The harness itself never needs Node.
+// their data, and an HTML body, written into <run-dir>/report/; report/render.mjs (Node) then makes report.html
+// (offline; the run's images linked, or embedded with --self-contained) and one SVG per chart. The harness never needs
+// Node.
 #include <string>
 #include <vector>
 
@@ -9,9 +10,10 @@ namespace lb {
 
 struct ReportOptions {
   std::string runDir;
-  std::string outDir;       // default: <runDir>/report
-  std::vector<int> frames;  // frames for the image strips; empty = every frame with images
-  bool html = true;         // run render.mjs after writing
+  std::string outDir;          // default: <runDir>/report
+  std::vector<int> frames;     // frames for the image strips; empty = every frame with images
+  bool html = true;            // run render.mjs after writing
+  bool selfContained = false;  // report.html embeds the images (default: links them, lazily loaded)
 };
 
 struct ReportOutput {
@@ -28,8 +30,8 @@ ReportOutput writeReport(const ReportOptions& options);
 std::string reportScriptDir();
 // Why report.html cannot be rendered here ("" when node and report/node_modules are present).
 std::string renderUnavailableReason();
-// Runs `node render.mjs <dir>`; returns its exit status.
-int renderHtml(const std::string& reportDir);
+// Runs `node render.mjs <dir> [--self-contained]`; returns its exit status.
+int renderHtml(const std::string& reportDir, bool selfContained = false);
 
 // The CLI subcommand: write, render when possible, print what was done. Returns the exit code.
 int reportCommand(const ReportOptions& options);

@@ -28,7 +28,50 @@ const Point* best(const std::vector<Point>& points, Admit admit, Key key) {
   return b;
 }
 
-std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>& points, size_t timedOnly) {
+// The median GPU time of each repetition: frames are stored repetition after repetition
+// (docs/results-format.md), so `reps` equal slices; one value when they do not split evenly.
+std::vector<double> repetitionMedians(const ReportCase& c, int reps) {
+  std::vector<double> all;
+  for (auto& f : c.frames)
+    if (auto v = frameValue(f, "gpu_ms")) all.push_back(*v);
+  if (all.empty()) return {};
+  if (reps < 2 || all.size() % size_t(reps) != 0 || all.size() / size_t(reps) == 0) return {medianOf(all)};
+  std::vector<double> out;
+  const size_t per = all.size() / size_t(reps);
+  for (int r = 0; r < reps; ++r)
+    out.push_back(
+        medianOf(std::vector<double>(all.begin() + long(size_t(r) * per), all.begin() + long((r + 1) * per))));
+  return out;
+}
+
+// How far the fastest case leads the fastest case of any other scheme under the same cap, and
+// whether that lead is larger than the noise between repetitions.
+std::string marginSentence(const Point& fast, const std::vector<Point>& points, double errCap, int reps) {
+  const Point* second = best(
+      points, [&](const Point& p) { return p.err <= errCap && p.c->scheme != fast.c->scheme; },
+      [](const Point& p) { return p.gpu; });
+  if (!second) return " No other scheme has a case within that error, so there is no runner-up to measure a margin to.";
+  const double margin = second->gpu - fast.gpu;
+  std::string s = " Runner-up, the fastest other scheme within that error: " + second->c->label + " at " +
+                  formatValue(second->gpu) + " ms, a margin of " + formatValue(margin) + " ms (" +
+                  formatValue(fast.gpu > 0 ? 100 * margin / fast.gpu : 0) + "%)";
+  std::vector<double> a = repetitionMedians(*fast.c, reps), b = repetitionMedians(*second->c, reps);
+  if (a.size() < 2 || b.size() < 2)
+    return s + "; the run has " + (reps < 2 ? "one repetition" : "no per-repetition frames") +
+           ", so there is no run-to-run spread to judge the margin by (set repetitions to 3 or more).";
+  auto spread = [](const std::vector<double>& v) {
+    return *std::max_element(v.begin(), v.end()) - *std::min_element(v.begin(), v.end());
+  };
+  const double noise = std::max(spread(a), spread(b));
+  const std::string rule =
+      " (rule: the margin against the larger of the two cases' run-to-run spreads, max - min of "
+      "their " +
+      std::to_string(reps) + " per-repetition medians, here " + formatValue(noise) + " ms)";
+  return s + (margin < noise ? ": within noise" + rule + ", so the two are not told apart."
+                             : ": larger than the noise" + rule + ".");
+}
+
+std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>& points, size_t timedOnly, int reps) {
   std::string lead = scenario + ": ";
   if (points.empty())
     return lead + "no finished case has both a GPU time and an error pass (config measure.passes lacks \"error\"), " +
@@ -56,8 +99,9 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
   // Named in reading order (the operands of + are unsequenced: one statement per name).
   std::string s = lead + n + " with an error pass. Fastest at a mean screen-space error of at most " +
                   formatValue(errCap) + " px (the median error): ";
-  s += name(fast);
-  s += ". Most accurate within " + formatValue(gpuCap) + " ms of GPU time (the median): ";
+  s += name(fast) + ".";
+  s += marginSentence(*fast, points, errCap, reps);
+  s += " Most accurate within " + formatValue(gpuCap) + " ms of GPU time (the median): ";
   s += name(exact) + ".";
   if (tris.size() == points.size()) {
     const double triCap = medianOf(tris);
@@ -69,6 +113,13 @@ std::string scenarioAnswer(const std::string& scenario, const std::vector<Point>
   }
   if (timedOnly) s += " Not counted: " + std::to_string(timedOnly) + " finished case(s) without an error pass.";
   return s;
+}
+
+int repetitions(const ReportRun& run) {
+  auto config = run.context.find("config");
+  if (config == run.context.end() || !config->is_object()) return 1;
+  auto r = config->find("repetitions");
+  return r != config->end() && r->is_number_integer() ? std::max(1, r->get<int>()) : 1;
 }
 
 std::string deviceCaveat(const ReportRun& run) {
@@ -114,7 +165,7 @@ std::vector<std::string> openingAnswer(const ReportRun& run) {
     }
     if (ok == 0) continue;  // every case failed or was skipped: the problems table says why
     anyOk = true;
-    out.push_back(scenarioAnswer(scenario, points, timedOnly));
+    out.push_back(scenarioAnswer(scenario, points, timedOnly, repetitions(run)));
   }
   if (!anyOk) return {"No case finished, so this report has no figures to answer from (see Failed and skipped cases)."};
   out.push_back(deviceCaveat(run));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <set>
 
 #include "render/image_io.h"
@@ -68,6 +69,28 @@ std::string crackLegend() {
 }
 
 }  // namespace
+
+std::pair<int, int> pngSize(const std::string& file) {
+  // The IHDR chunk follows the 8-byte signature: length, "IHDR", then width and height, big-endian.
+  unsigned char b[24] = {};
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  size_t got = f ? std::fread(b, 1, sizeof b, f) : 0;
+  if (f) std::fclose(f);
+  if (got < sizeof b || std::memcmp(b + 12, "IHDR", 4) != 0) return {0, 0};
+  auto be = [&](int at) { return int(b[at]) << 24 | int(b[at + 1]) << 16 | int(b[at + 2]) << 8 | int(b[at + 3]); };
+  return {be(16), be(20)};
+}
+
+std::string imageTag(const ReportRun& run, const std::string& runHref, const std::string& file,
+                     const std::string& alt) {
+  // Linked, not embedded: the browser fetches an image when it scrolls near (loading="lazy"); its
+  // size up front keeps the page from jumping while images arrive.
+  std::string tag = "<img src=\"" + htmlEscape(runHref + "/" + file) + "\" alt=\"" + htmlEscape(alt) +
+                    "\" loading=\"lazy\" decoding=\"async\"";
+  auto [w, h] = pngSize(run.dir + "/" + file);
+  if (w > 0 && h > 0) tag += " width=\"" + std::to_string(w) + "\" height=\"" + std::to_string(h) + "\"";
+  return tag + ">";
+}
 
 std::string heatColour(double level) {
   const double t = std::clamp(std::log2(std::max(level, 1.0)) / 6.0, 0.0, 1.0);
@@ -170,8 +193,8 @@ std::pair<std::string, std::string> imageSection(const ReportRun& run, const std
             "</figcaption><div class=\"shots\">";
     for (auto& [mode, file] : s.images) {
       md += "![" + mode + "](" + runHref + "/" + file + ") ";
-      html += "<div class=\"shot\"><img src=\"" + htmlEscape(runHref + "/" + file) + "\" alt=\"" + htmlEscape(mode) +
-              "\"><span>" + htmlEscape(mode) + "</span>" + legendHtml(mode) + "</div>";
+      html += "<div class=\"shot\">" + imageTag(run, runHref, file, mode) + "<span>" + htmlEscape(mode) + "</span>" +
+              legendHtml(mode) + "</div>";
     }
     md += "\n\n";
     html += "</div></figure>\n";

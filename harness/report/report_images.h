@@ -27,6 +27,12 @@ std::vector<Strip> imageStrips(const ReportRun& run, const std::vector<int>& fra
 std::pair<std::string, std::string> imageSection(const ReportRun& run, const std::vector<Strip>& strips,
                                                  const std::string& runHref);
 
+// Width and height from a PNG's header; {0, 0} when the file is missing or not a PNG.
+std::pair<int, int> pngSize(const std::string& file);
+// An <img> linking a run image (runHref + "/" + file, file relative to the run directory), lazily
+// loaded, with its pixel size when the file can be read.
+std::string imageTag(const ReportRun& run, const std::string& runHref, const std::string& file, const std::string& alt);
+
 // terrain.frag's heat(): tessellation level -> "#rrggbb" (log2 scale, 1 blue .. 8 green .. 64 red),
 // before lighting (the heat map multiplies it by 0.25 + 0.75 * diffuse; wireframe lines do not).
 std::string heatColour(double level);

@@ -6,7 +6,9 @@
 
 #include "report/page_assets.h"
 #include "report/report_answer.h"
+#include "report/report_glossary.h"
 #include "report/report_howto.h"
+#include "report/report_side_by_side.h"
 #include "report/report_tables.h"
 #include "report/scenario_table.h"
 #include "report/table.h"
@@ -35,6 +37,7 @@ const Section kChartSections[] = {
 
 class Writer {
  public:
+  explicit Writer(const ReportRun& run) : run_(run) {}
   void heading(int level, const std::string& text, const std::string& id) {
     md_ += "\n" + std::string(size_t(level), '#') + " " + text + "\n\n";
     html_ +=
@@ -46,9 +49,31 @@ class Writer {
   }
   // Every table scrolls inside its own box (the page stays within the window); wide ones pin
   // their first column so a row stays readable while scrolling.
-  void table(const Table& t, const std::string& cls, bool sticky = false) {
+  // Each header links to its definition in the closing "Column definitions" section.
+  void table(Table t, const std::string& cls, bool sticky = false) {
+    t.headerHrefs.clear();
+    for (const std::string& h : t.header) {
+      t.headerHrefs.push_back("#" + definitionAnchor(h));
+      if (std::find(defined_.begin(), defined_.end(), h) == defined_.end()) defined_.push_back(h);
+    }
     md_ += toMarkdown(t) + "\n";
     html_ += "<div class=\"table-wrap\">" + toHtml(t, cls + (sticky ? " sticky" : "")) + "</div>\n";
+  }
+  // Every column header used above, defined once, in order of first use.
+  void glossary() {
+    heading(2, "Column definitions", "glossary");
+    para(
+        "What each table column holds. Timing columns are over the timed frames (every frame of the path at the "
+        "config's fps, warm-up excluded, all repetitions); error, image and stability columns over the measured "
+        "frames (every measure.every-th frame).");
+    std::string html = "<dl class=\"glossary\">";
+    for (const std::string& h : defined_) {
+      std::string text = columnDefinition(run_, h).value_or("(no definition recorded: a report bug)");
+      md_ += "- **" + h + "**: " + text + "\n";
+      html += "<dt id=\"" + definitionAnchor(h) + "\">" + htmlEscape(h) + "</dt><dd>" + htmlEscape(text) + "</dd>";
+    }
+    md_ += "\n";
+    html_ += html + "</dl>\n";
   }
   void howto(const std::vector<std::string>& keys) {
     auto [md, html] = howToRead(keys);
@@ -61,7 +86,9 @@ class Writer {
   Page page() const { return {md_, html_}; }
 
  private:
+  const ReportRun& run_;
   std::string md_, html_;
+  std::vector<std::string> defined_;
 };
 
 void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts) {
@@ -108,7 +135,7 @@ void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref
 
 Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std::vector<Strip>& strips,
                const std::string& runHref, const std::vector<std::string>& notes) {
-  Writer w;
+  Writer w(run);
   w.raw("# lodbench report: " + run.name + "\n\n",
         pageAssetsHtml() + "<h1>lodbench report: " + htmlEscape(run.name) + "</h1>\n");
   // The answer first: what the run says, with its thresholds and caveat, then the evidence.
@@ -128,6 +155,8 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   }
 
   for (const Section& s : kChartSections) chartSection(w, s, charts);
+  auto [sideMd, sideHtml] = sideBySideSection(run, runHref);
+  w.raw(sideMd, sideHtml);
 
   w.heading(2, "Stability", "stability");
   w.para(
@@ -192,6 +221,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
 
   auto [imagesMd, imagesHtml] = imageSection(run, strips, runHref);
   w.raw(imagesMd, imagesHtml);
+  w.glossary();
   return w.page();
 }
 

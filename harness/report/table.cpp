@@ -84,7 +84,12 @@ std::string toMarkdown(const Table& t) {
 
 std::string toHtml(const Table& t, const std::string& cssClass) {
   std::string s = "<table class=\"" + cssClass + "\">\n<thead><tr>";
-  for (auto& h : t.header) s += "<th>" + htmlEscape(h) + "</th>";
+  for (size_t i = 0; i < t.header.size(); ++i) {
+    const std::string h = htmlEscape(t.header[i]);
+    s += i < t.headerHrefs.size() && !t.headerHrefs[i].empty()
+             ? "<th><a class=\"def\" href=\"" + htmlEscape(t.headerHrefs[i]) + "\">" + h + "</a></th>"
+             : "<th>" + h + "</th>";
+  }
   s += "</tr></thead>\n<tbody>\n";
   for (size_t r = 0; r < t.rows.size(); ++r) {
     const auto& row = t.rows[r];

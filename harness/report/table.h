@@ -14,8 +14,9 @@ struct Cell {
 struct Table {
   std::vector<std::string> header;
   std::vector<std::vector<Cell>> rows;
-  std::vector<bool> numeric;        // right-aligned columns (optional, per header entry)
-  std::vector<std::string> rowIds;  // HTML id of each row (optional): link targets
+  std::vector<bool> numeric;             // right-aligned columns (optional, per header entry)
+  std::vector<std::string> rowIds;       // HTML id of each row (optional): link targets
+  std::vector<std::string> headerHrefs;  // HTML link of each header (optional): its definition
 };
 
 std::string htmlEscape(const std::string& s);
