@@ -87,35 +87,46 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                  " is a software rasterizer. Tessellation is emulated on the CPU there, so these timings are no "
                  "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "
                  "any device.";
-  out.table.header = {"scheme",       "draw path",   "parameter", "reached",  "err_p95_px (run)", "GPU ms median",
-                      "GPU ms p95",   "LOD ms",      "draw ms",   "LOD CPU ms", "triangles",      "non-degenerate"};
+  out.table.header = {"scheme",
+                      "draw path",
+                      "matched parameter",
+                      "search reached",
+                      "error p95 px, run median",
+                      "GPU ms median",
+                      "GPU ms p95",
+                      "LOD GPU ms",
+                      "draw GPU ms",
+                      "LOD CPU ms",
+                      "triangles median",
+                      "non-degenerate triangles"};
   out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true};
   json data = json::array();
   for (const Row& r : rows) {
     const ReportCase& c = *r.c;
     const json& m = c.matched;
     const bool reachable = m.value("reachable", true);
-    std::string param = m.value("param", "") + " = " + (m["value"].is_number() ? formatValue(m["value"].get<double>()) : "?");
+    std::string param =
+        m.value("param", "") + " = " + (m["value"].is_number() ? formatValue(m["value"].get<double>()) : "?");
     std::string reached = (m["achieved"].is_number() ? formatValue(m["achieved"].get<double>()) : "?") +
                           (reachable ? "" : " (unreachable)");
     auto gpu95 = summaryStat(c.summary, "gpu_ms", "p95");
     auto lod = summaryStat(c.summary, "lod_ms", "median"), draw = summaryStat(c.summary, "draw_ms", "median");
-    out.table.rows.push_back({textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
-                              textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
-                              textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian)
-                                                                              : std::nullopt)),
-                              textCell(formatValue(gpu95)), textCell(formatValue(lod)), textCell(formatValue(draw)),
-                              textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
-                              textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
-                              textCell(formatValue(nonDegenerateMedian(c)))});
+    out.table.rows.push_back(
+        {textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
+         textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
+         textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian) : std::nullopt)),
+         textCell(formatValue(gpu95)), textCell(formatValue(lod)), textCell(formatValue(draw)),
+         textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
+         textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
+         textCell(formatValue(nonDegenerateMedian(c)))});
     if (!std::isfinite(r.gpuMedian)) continue;
     const std::string label = c.scheme + (reachable ? "" : " (unreachable)");
     if (lod && draw) {
       data.push_back({{"scheme", label}, {"part", "LOD passes"}, {"ms", *lod}, {"order", r.gpuMedian}});
       data.push_back({{"scheme", label}, {"part", "draw"}, {"ms", *draw}, {"order", r.gpuMedian}});
     } else {
-      data.push_back({{"scheme", label}, {"part", "frame (LOD inside the draw)"}, {"ms", r.gpuMedian},
-                      {"order", r.gpuMedian}});
+      data.push_back(
+          {{"scheme", label}, {"part", "frame (LOD inside the draw)"}, {"ms", r.gpuMedian}, {"order", r.gpuMedian}});
     }
     if (gpu95) data.push_back({{"scheme", label}, {"part", "p95"}, {"p95", *gpu95}, {"order", r.gpuMedian}});
   }
@@ -125,28 +136,35 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
   ch.title = "GPU ms per frame at " + metric + " " + formatValue(target);
   ch.dataName = "equal_error";
   ch.data = data;
-  const json y = {{"field", "scheme"}, {"type", "nominal"}, {"title", nullptr},
+  const json y = {{"field", "scheme"},
+                  {"type", "nominal"},
+                  {"title", nullptr},
                   {"sort", {{"field", "order"}, {"op", "min"}, {"order", "ascending"}}}};
-  ch.spec = {{"$schema", kVegaLiteSchema},
-             {"title", ch.title},
-             {"width", 560},
-             {"data", {{"url", "data/equal_error.json"}}},
-             {"layer",
-              json::array({{{"transform", json::array({{{"filter", "datum.part != 'p95'"}}})},
-                            {"mark", {{"type", "bar"}}},
-                            {"encoding",
-                             {{"y", y},
-                              {"x", {{"field", "ms"}, {"type", "quantitative"}, {"stack", "zero"},
-                                     {"title", "GPU ms/frame, median (bars) and p95 (tick)"}}},
-                              {"color", {{"field", "part"}, {"type", "nominal"}, {"title", "part of the frame"}}},
-                              {"tooltip", json::array({{{"field", "scheme"}}, {{"field", "part"}},
-                                                       {{"field", "ms"}, {"format", ".3f"}}})}}}},
-                           {{"transform", json::array({{{"filter", "datum.part == 'p95'"}}})},
-                            {"mark", {{"type", "tick"}, {"color", "black"}, {"thickness", 2}}},
-                            {"encoding",
-                             {{"y", y},
-                              {"x", {{"field", "p95"}, {"type", "quantitative"}}},
-                              {"tooltip", json::array({{{"field", "scheme"}}, {{"field", "p95"}, {"format", ".3f"}}})}}}}})}};
+  ch.spec = {
+      {"$schema", kVegaLiteSchema},
+      {"title", ch.title},
+      {"width", 560},
+      {"data", {{"url", "data/equal_error.json"}}},
+      {"layer",
+       json::array(
+           {{{"transform", json::array({{{"filter", "datum.part != 'p95'"}}})},
+             {"mark", {{"type", "bar"}}},
+             {"encoding",
+              {{"y", y},
+               {"x",
+                {{"field", "ms"},
+                 {"type", "quantitative"},
+                 {"stack", "zero"},
+                 {"title", "GPU ms/frame, median (bars) and p95 (tick)"}}},
+               {"color", {{"field", "part"}, {"type", "nominal"}, {"title", "part of the frame"}}},
+               {"tooltip",
+                json::array({{{"field", "scheme"}}, {{"field", "part"}}, {{"field", "ms"}, {"format", ".3f"}}})}}}},
+            {{"transform", json::array({{{"filter", "datum.part == 'p95'"}}})},
+             {"mark", {{"type", "tick"}, {"color", "black"}, {"thickness", 2}}},
+             {"encoding",
+              {{"y", y},
+               {"x", {{"field", "p95"}, {"type", "quantitative"}}},
+               {"tooltip", json::array({{{"field", "scheme"}}, {{"field", "p95"}, {"format", ".3f"}}})}}}}})}};
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "report/charts.h"
+#include "report/equal_error.h"
 #include "report/report_howto.h"
 #include "report/report_page.h"
 #include "report/run_data.h"
@@ -68,6 +69,7 @@ ReportOutput writeReport(const ReportOptions& options) {
   for (auto& c : scaleCharts(run)) charts.push_back(std::move(c));
   charts.push_back(histogramChart(run));
   for (auto& c : timelineCharts(run)) charts.push_back(std::move(c));
+  if (EqualErrorSection eq = equalErrorSection(run); eq.present) charts.push_back(std::move(eq.chart));
 
   ReportOutput result;
   result.dir = out.string();

@@ -103,6 +103,18 @@ const Definition kDefinitions[] = {
     {"worst frame", "the measured frame where the case's value of the metric was worst."},
     {"images", "the worst frame's images, when the run wrote them."},
     {"scenario", "the scenario: camera path and terrain (row of the grid)."},
+    {"draw path",
+     "how the scheme's triangles reach the rasterizer: tessellation, instanced grid (CPU selection), GPU-indirect "
+     "(compute passes; tessellated when each instance is a patch). docs/draw-paths.md."},
+    {"matched parameter", "the scheme's main parameter at the value the matched search found for the target."},
+    {"search reached",
+     "the metric the search measured at that value, over its evaluation frames; \"unreachable\" when the target "
+     "lies beyond the parameter's range and the search stopped at its bound."},
+    {"error p95 px, run median",
+     "the 95th-percentile screen-space error of each measured frame of the case, median over those frames."},
+    {"non-degenerate triangles",
+     "triangles drawn less those of zero ground area (morph collapses, clipmap strips), median over measured "
+     "frames."},
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <set>
 
+#include "report/equal_error.h"
 #include "report/page_assets.h"
 #include "report/report_answer.h"
 #include "report/report_glossary.h"
@@ -91,13 +92,9 @@ class Writer {
   std::vector<std::string> defined_;
 };
 
-void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts) {
-  if (std::none_of(charts.begin(), charts.end(), [&](const Chart& c) { return c.section == s.id; }))
-    return;  // scale: only when the run varies grid, resolution or a parameter
-  w.heading(2, s.title, s.id);
-  w.para(s.intro);
+void chartBoxes(Writer& w, const std::string& section, const std::vector<Chart>& charts) {
   for (auto& c : charts) {
-    if (c.section != s.id) continue;
+    if (c.section != section) continue;
     if (!c.note.empty()) {
       w.para(c.note, "note");
       continue;
@@ -108,6 +105,25 @@ void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts)
               "\"></div>" + chartFilesHtml(c) +
               (c.caption.empty() ? "" : "<figcaption>" + htmlEscape(c.caption) + "</figcaption>") + "</figure>\n");
   }
+}
+
+void chartSection(Writer& w, const Section& s, const std::vector<Chart>& charts) {
+  if (std::none_of(charts.begin(), charts.end(), [&](const Chart& c) { return c.section == s.id; }))
+    return;  // scale: only when the run varies grid, resolution or a parameter
+  w.heading(2, s.title, s.id);
+  w.para(s.intro);
+  chartBoxes(w, s.id, charts);
+}
+
+// A matched run (config "match"): every scheme's cost at the one error it was matched to.
+void equalErrorPart(Writer& w, const ReportRun& run, const std::vector<Chart>& charts) {
+  const EqualErrorSection eq = equalErrorSection(run);
+  if (!eq.present) return;
+  w.heading(2, eq.title, "equal-error");
+  w.para(eq.intro);
+  if (!eq.caveat.empty()) w.para(eq.caveat, "caveat");
+  w.table(eq.table, "equal-error", true);
+  chartBoxes(w, "equal-error", charts);
 }
 
 // Scenario runs (configs/scenarios/): what failure to look for, a grid of how badly each
@@ -154,6 +170,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
           "<details><summary>Config as run</summary><pre>" + htmlEscape(config) + "</pre></details>\n");
   }
 
+  equalErrorPart(w, run, charts);
   for (const Section& s : kChartSections) chartSection(w, s, charts);
   auto [sideMd, sideHtml] = sideBySideSection(run, runHref);
   w.raw(sideMd, sideHtml);
