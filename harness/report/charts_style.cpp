@@ -30,17 +30,15 @@ constexpr const char* kHalfDisc = "M-1,0.4A1,1 0 0 1 1,0.4Z";
 constexpr const char* kTrapezoid = "M-0.5,-0.8L0.5,-0.8L1,0.8L-1,0.8Z";
 constexpr const char* kChevron = "M-1,-0.8L0,0.2L1,-0.8L1,0L0,1L-1,0Z";
 constexpr const char* kTee = "M-1,-1H1V-0.4H0.3V1H-0.3V-0.4H-1Z";
-constexpr const char* kArrow = "M0,-1L1,0H0.4V1H-0.4V0H-1Z";
-constexpr const char* kEll = "M-1,-1H-0.3V0.3H1V1H-1Z";
 // Rings: an outer outline and an inner one wound the other way, so the middle stays empty.
 constexpr const char* kRing =
     "M0,-1A1,1 0 1 1 0,1A1,1 0 1 1 0,-1ZM0,-0.45A0.45,0.45 0 1 0 0,0.45A0.45,0.45 0 1 0 0,-0.45Z";
 constexpr const char* kFrame = "M-1,-1H1V1H-1ZM-0.45,-0.45V0.45H0.45V-0.45Z";
 
-// Room for 20 schemes: the registered ones by name, then six spare styles that a scheme without an
+// Room for 20 schemes: the registered ones by name, then four spare styles that a scheme without an
 // entry takes in registry order (a scheme added before its entry) or, when not registered, by hash.
-const SchemeStyle kSpare[] = {{"", "#B8860B", kHalfDisc}, {"", "#6699CC", kTrapezoid}, {"", "#663333", kChevron},
-                              {"", "#66AA55", kTee},      {"", "#DDAA33", kArrow},     {"", "#7A5195", kEll}};
+const SchemeStyle kSpare[] = {
+    {"", "#B8860B", kHalfDisc}, {"", "#6699CC", kTrapezoid}, {"", "#663333", kChevron}, {"", "#66AA55", kTee}};
 
 }  // namespace
 
