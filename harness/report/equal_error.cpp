@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "schemes/registry.h"
-#include "stats.h"
 
 namespace lb {
 
@@ -26,16 +26,23 @@ const char* pathName(const std::string& scheme) {
   return "?";
 }
 
-// Triangles a measured frame drew that cover some ground: the clipper's count less the histogram's
-// degenerate ones (zero ground area: morph collapses, clipmap strips); median over measured frames.
-std::optional<double> nonDegenerateMedian(const ReportCase& c) {
-  std::vector<double> v;
+// The share of the triangles drawn on measured frames that cover some ground: the clipper's count
+// less the histogram's degenerate ones (zero ground area: morph collapses, clipmap strips).
+std::optional<double> nonDegenerateShare(const ReportCase& c) {
+  double all = 0, degenerate = 0;
   for (const json& f : c.frames) {
-    auto clip = frameValue(f, "clip_invocations"), degenerate = frameValue(f, "hist_degenerate");
-    if (clip && degenerate) v.push_back(*clip - *degenerate);
+    auto clip = frameValue(f, "clip_invocations"), deg = frameValue(f, "hist_degenerate");
+    if (clip && deg) all += *clip, degenerate += *deg;
   }
-  if (v.empty()) return std::nullopt;
-  return percentile(v, 50);
+  if (all <= 0) return std::nullopt;
+  return (all - degenerate) / all;
+}
+
+std::string percentText(const std::optional<double>& share) {
+  if (!share) return formatValue(share);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * *share);
+  return buf;
 }
 
 std::string deviceName(const ReportRun& run) {
@@ -78,8 +85,8 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
       " (config \"match\"); each row is the case run at the value found, cheapest GPU median first. LOD ms and "
       "draw ms split the frame where the draw path decides its LOD apart from drawing (instanced grid: the CPU "
       "selection is lod_cpu_ms, outside the GPU time; GPU-indirect: the compute passes); on the tessellation path "
-      "the LOD decision runs inside the draw. Non-degenerate triangles leave out the zero-area ones (morph "
-      "collapses, clipmap strips), median over measured frames. Unreachable targets are marked: the search "
+      "the LOD decision runs inside the draw. The non-degenerate share leaves out the zero-area triangles (morph "
+      "collapses, clipmap strips) of the measured frames. Unreachable targets are marked: the search "
       "stopped at the parameter's bound.";
   const std::string device = deviceName(run);
   if (softwareDevice(device))
@@ -87,18 +94,10 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                  " is a software rasterizer. Tessellation is emulated on the CPU there, so these timings are no "
                  "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "
                  "any device.";
-  out.table.header = {"scheme",
-                      "draw path",
-                      "matched parameter",
-                      "search reached",
-                      "error p95 px, run median",
-                      "GPU ms median",
-                      "GPU ms p95",
-                      "LOD GPU ms",
-                      "draw GPU ms",
-                      "LOD CPU ms",
-                      "triangles median",
-                      "non-degenerate triangles"};
+  out.table.header = {
+      "scheme",           "draw path",           "matched parameter", "search reached", "error p95 px, run median",
+      "GPU ms median",    "GPU ms p95",          "LOD GPU ms",        "draw GPU ms",    "LOD CPU ms",
+      "triangles median", "non-degenerate share"};
   out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true};
   json data = json::array();
   for (const Row& r : rows) {
@@ -118,7 +117,7 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
          textCell(formatValue(gpu95)), textCell(formatValue(lod)), textCell(formatValue(draw)),
          textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
          textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
-         textCell(formatValue(nonDegenerateMedian(c)))});
+         textCell(percentText(nonDegenerateShare(c)))});
     if (!std::isfinite(r.gpuMedian)) continue;
     const std::string label = c.scheme + (reachable ? "" : " (unreachable)");
     if (lod && draw) {
@@ -156,7 +155,11 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                  {"type", "quantitative"},
                  {"stack", "zero"},
                  {"title", "GPU ms/frame, median (bars) and p95 (tick)"}}},
-               {"color", {{"field", "part"}, {"type", "nominal"}, {"title", "part of the frame"}}},
+               {"color",
+                {{"field", "part"},
+                 {"type", "nominal"},
+                 {"title", "part of the frame"},
+                 {"legend", {{"labelLimit", 320}}}}},
                {"tooltip",
                 json::array({{{"field", "scheme"}}, {{"field", "part"}}, {{"field", "ms"}, {"format", ".3f"}}})}}}},
             {{"transform", json::array({{{"filter", "datum.part == 'p95'"}}})},

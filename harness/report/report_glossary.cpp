@@ -112,9 +112,9 @@ const Definition kDefinitions[] = {
      "lies beyond the parameter's range and the search stopped at its bound."},
     {"error p95 px, run median",
      "the 95th-percentile screen-space error of each measured frame of the case, median over those frames."},
-    {"non-degenerate triangles",
-     "triangles drawn less those of zero ground area (morph collapses, clipmap strips), median over measured "
-     "frames."},
+    {"non-degenerate share",
+     "the share of the triangles drawn on measured frames that have some ground area (the others: morph "
+     "collapses, clipmap strips, counted by the histogram pass as hist_degenerate)."},
 };
 
 }  // namespace
