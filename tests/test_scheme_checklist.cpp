@@ -81,11 +81,21 @@ std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& 
   };
   // Shaders, and the parameter header they share with the C++ side: the LOD shader is the control
   // shader on the tessellation path and the vertex shader on the instanced one.
+  // GPU-indirect: the shader that places the records' triangles (the control shader of a patch
+  // footprint, else the vertex shader), which includes the parameter header its tree shares (cbt-ts
+  // takes cbt's: cbt_params.h).
   const bool instanced = info.path == DrawPath::InstancedGrid;
-  const std::string stem = instanced ? info.vert : info.tesc;
-  const std::string lodShader = stem + (instanced ? ".vert" : ".tesc");
+  const bool indirect = info.path == DrawPath::GpuIndirect;
+  const bool vertexStage = instanced || (indirect && info.tesc.empty());
+  std::string stem = vertexStage ? info.vert : info.tesc;
+  const std::string lodShader = stem + (vertexStage ? ".vert" : ".tesc");
   const std::string tesc = "shaders/" + lodShader;
   need(!stem.empty() && exists(tesc), tesc);
+  if (indirect && exists(tesc)) {
+    std::smatch m;
+    const std::string text = readText(kRoot + "/" + tesc);
+    if (std::regex_search(text, m, std::regex("#include \"([a-z0-9_]+)_params\\.h\""))) stem = m[1];
+  }
   if (!info.compute.empty()) need(exists("shaders/" + info.compute + ".comp"), "shaders/" + info.compute + ".comp");
   if (!info.params.empty()) {
     const std::string header = stem + "_params.h";

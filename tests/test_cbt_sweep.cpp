@@ -1,0 +1,127 @@
+// cbt and cbt-ts through whole sweeps, as a user runs them: converged and recorded, two repetitions
+// and a depth-only timing mode each restored to the same state (equal instances on every frame, or
+// "LOD replay diverged"), every measurement pass on the replayed state, images, and a matched search
+// whose result the equal-error section of the report shows.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+#include "report/equal_error.h"
+#include "report/run_data.h"
+#include "sweep/runner.h"
+
+using namespace lb;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kConfigs = std::string(LODBENCH_SOURCE_DIR) + "/configs";
+
+json treeRun(const std::string& name) {
+  return {{"name", name},
+          {"resolution", {160, 90}},
+          {"grid", 16},
+          {"fps", 6},
+          {"warmup_frames", 2},
+          {"repetitions", 2},
+          {"timing", {"shaded", "depth"}},
+          {"terrain", {{"type", "procedural"}, {"size", 257}, {"seed", 5}, {"extent", 2000}, {"height_scale", 300}}},
+          {"paths", {"paths/dive.csv"}},
+          {"schemes", {{{"name", "cbt"}, {"params", {{"tri_size", {3, 7}}}}}, {{"name", "cbt-ts"}}}},
+          {"measure", {{"every", 4}, {"passes", {"histogram", "error", "image", "cracks", "popping"}}}},
+          {"images", {{"frames", {0, -1}}, {"modes", {"shaded", "heatmap", "error", "cracks"}}, {"worst", false}}}};
+}
+
+fs::path runIt(const json& cfg, const std::string& tag) {
+  Config c = parseConfig(cfg.dump(), tag + ".json", kConfigs);
+  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_cbt_" + tag + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  RunOptions o;
+  o.outDir = dir.string();
+  o.progress = false;
+  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
+  RunTotals t = runSweep(c, o);
+  EXPECT_EQ(t.failed, 0) << tag;
+  EXPECT_EQ(t.validationErrors, 0) << tag;
+  return dir;
+}
+
+}  // namespace
+
+TEST(CbtSweep, ConvergesReplaysAndMeasuresEveryCase) {
+  const fs::path dir = runIt(treeRun("cbt-sweep"), "sweep");
+  int cases = 0;
+  for (const auto& e : fs::directory_iterator(dir / "cases")) {
+    const json c = json::parse(std::ifstream(e.path()));
+    const std::string id = c["case_id"];
+    ASSERT_EQ(c["status"], "ok") << id << ": " << c["reason"];
+    const json& s = c["summary"];
+    EXPECT_TRUE(s["lod_converged"].get<bool>()) << id;
+    EXPECT_LE(s["converge_updates"].get<int>(), 2 * s["cbt_depth"].get<int>() + 8) << id;
+    EXPECT_EQ(s["converged_state_sha256"].get<std::string>().size(), 64u) << id;
+    // Both repetitions start from the snapshot: the same instances on every frame.
+    std::map<int, std::vector<uint64_t>> byFrame;
+    int measured = 0;
+    for (const json& f : c["frames"]) {
+      if (f.contains("instances")) byFrame[f["frame"].get<int>()].push_back(f["instances"].get<uint64_t>());
+      if (f.contains("err_p95_px") && f["err_p95_px"].is_number()) {
+        ++measured;
+        EXPECT_EQ(f["cracks_analytic"], 0) << id << " frame " << f["frame"];
+        EXPECT_EQ(f["cracks_pixels"], 0) << id << " frame " << f["frame"];
+        if (f["frame"].get<int>() > 0) EXPECT_TRUE(f["pop_mean"].is_number()) << id << " frame " << f["frame"];
+      }
+    }
+    EXPECT_GT(measured, 1) << id;
+    for (const auto& [frame, counts] : byFrame) {
+      ASSERT_EQ(counts.size(), 2u) << id << " frame " << frame;
+      EXPECT_EQ(counts[0], counts[1]) << id << " frame " << frame;
+    }
+    EXPECT_EQ(c["images"].size(), 8u) << id << ": 2 frames x 4 modes";
+    ++cases;
+  }
+  EXPECT_EQ(cases, 3);
+  fs::remove_all(dir);
+}
+
+// A matched run: the report's equal-error section has one row per scheme, cheapest first, with
+// the lavapipe caveat, and its chart's data.
+TEST(CbtSweep, EqualErrorSectionListsEveryMatchedScheme) {
+  json cfg = treeRun("cbt-equal-error");
+  cfg["repetitions"] = 1;
+  cfg.erase("timing");
+  cfg.erase("images");
+  cfg["schemes"] = {"cbt", "cbt-ts", "sphere", "cdlod"};
+  cfg["match"] = {{"metric", "err_p95_px"}, {"value", 1.0}, {"frames", 2}, {"iterations", 4}};
+  cfg["measure"] = {{"every", 4}, {"passes", {"histogram", "error"}}};
+  const fs::path dir = runIt(cfg, "match");
+  const ReportRun run = loadReportRun(dir.string());
+  const EqualErrorSection eq = equalErrorSection(run);
+  ASSERT_TRUE(eq.present);
+  EXPECT_NE(eq.title.find("1"), std::string::npos) << eq.title;
+  EXPECT_NE(eq.caveat.find("no verdict on the tessellator"), std::string::npos) << eq.caveat;
+  ASSERT_EQ(eq.table.rows.size(), 4u);
+  std::set<std::string> schemes;
+  double last = 0;
+  for (const auto& row : eq.table.rows) {
+    schemes.insert(row[0].md);
+    const double ms = std::stod(row[5].md);
+    EXPECT_GE(ms, last) << "rows are cheapest first";
+    last = ms;
+  }
+  EXPECT_EQ(schemes, (std::set<std::string>{"cbt", "cbt-ts", "sphere", "cdlod"}));
+  EXPECT_EQ(eq.chart.section, "equal-error");
+  EXPECT_FALSE(eq.chart.data.empty());
+  fs::remove_all(dir);
+}
+
+// A run without a match has no such section.
+TEST(CbtSweep, NoEqualErrorSectionWithoutAMatch) {
+  ReportRun run;
+  run.context = {{"device", "llvmpipe"}};
+  EXPECT_FALSE(equalErrorSection(run).present);
+}
