@@ -162,9 +162,20 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   };
   if (progress) progress->phase(Phase::Measure);
   std::vector<uint32_t> timedLod;  // stateful: the first repetition's instances, frame by frame
+  const int measuredCount = ms.every > 0 ? (frames + ms.every - 1) / ms.every : 0;
+  int done = 0;
+  // A measured frame's numbers stay (its pixels too where an image of it was asked for).
+  auto keep = [&](FrameMetrics m) {
+    if (wantsImage(m.frame)) kept[m.frame] = m;
+    m.shaded = {};
+    m.reference = {};
+    m.errorMap.clear();
+    m.crackMask.clear();
+    result.metrics.push_back(std::move(m));
+    if (progress) progress->frame(++done, measuredCount);
+  };
   if (stateful) {
     timedLod = timedInstances(result.frames, frames);
-    int count = ms.every > 0 ? (frames + ms.every - 1) / ms.every : 0, done = 0;
     LodReplay replay(renderer, pose, timedLod);
     for (int f = 0; f < frames; ++f) {
       if (gStop) throw Interrupted();
@@ -178,29 +189,14 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       replay.advanceTo(f);
       if (!measured) continue;
       FrozenLod frozen(renderer);
-      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
-                                    pose(std::max(0, f - 1)), pose(f), before.px.empty() ? nullptr : &before);
-      if (wantsImage(f)) kept[f] = m;
-      m.shaded = {};
-      m.reference = {};
-      m.errorMap.clear();
-      m.crackMask.clear();
-      result.metrics.push_back(std::move(m));
-      if (progress) progress->frame(++done, count);
+      keep(measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
+                        pose(std::max(0, f - 1)), pose(f), before.px.empty() ? nullptr : &before));
     }
   } else if (ms.every > 0) {
-    int count = (frames + ms.every - 1) / ms.every, done = 0;
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
-      FrameMetrics m = measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
-                                    pose(std::max(0, f - 1)), pose(f));
-      if (wantsImage(f)) kept[f] = m;
-      m.shaded = {};
-      m.reference = {};
-      m.errorMap.clear();
-      m.crackMask.clear();
-      result.metrics.push_back(std::move(m));
-      if (progress) progress->frame(++done, count);
+      keep(measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
+                        pose(std::max(0, f - 1)), pose(f)));
     }
   }
   if (progress) progress->phase(Phase::Images);
