@@ -1,5 +1,8 @@
 // The GPU profiler's timestamp mask, timing modes (depth, frontend) against shaded,
 // the minimal loop (probe), and clock-control calibration with a planted drift.
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -11,6 +14,7 @@
 #include "render/probe.h"
 #include "render/uniform_instanced.h"
 #include "replay/timing_passes.h"
+#include "report/report.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -218,5 +222,56 @@ TEST(TimingConfig, BadKeysNameTheField) {
       EXPECT_NE(msg.find("t.json:"), std::string::npos) << msg;
       EXPECT_TRUE(msg.find("/timing") != std::string::npos || msg.find("/calibration") != std::string::npos) << msg;
     }
+  }
+}
+
+// Timings right by default: with no "calibration" in the config a GPU calibrates and a CPU
+// rasterizer does not (its record says why); a GPU with "calibration": false is flagged in its
+// record and the report says its clock was not controlled. A GPU is pretended on lavapipe with
+// LODBENCH_TEST_DEVICE_TYPE=gpu.
+TEST(Calibration, OnByDefaultOnAGpuAndAnUncontrolledClockIsFlagged) {
+  const std::string dir = std::string(LODBENCH_SOURCE_DIR) + "/configs";
+  auto config = [&](const std::string& calibration) {
+    return parseConfig(R"({
+      "name": "clock", "resolution": [48, 32], "grid": 4, "fps": 10, "warmup_frames": 1, "max_frames": 2,
+      "terrain": {"type": "procedural", "size": 33, "seed": 5}, "paths": ["paths/flyover.csv"],
+      "schemes": [{"name": "uniform", "params": {"level": 3}}])" +
+                           calibration + "}",
+                       "clock.json", dir);
+  };
+  EXPECT_FALSE(config("").timing.calibrateSet);
+  EXPECT_TRUE(config(R"(, "calibration": false)").timing.calibrateSet);
+  struct Case {
+    bool gpu;
+    std::string calibration;
+    bool controlled, flagged;
+  };
+  for (const Case& k : {Case{false, "", false, false}, Case{true, "", true, false},
+                        Case{true, R"(, "calibration": false)", false, true}}) {
+    SCOPED_TRACE(std::string(k.gpu ? "gpu" : "cpu") + k.calibration);
+    if (k.gpu) setenv("LODBENCH_TEST_DEVICE_TYPE", "gpu", 1);
+    Config c = config(k.calibration);
+    c.timing.minLoadS = 0.1;  // the default's sustained load, shortened for the test
+    fs::path out = fs::temp_directory_path() / ("lodbench_clock_" + std::to_string(getpid()));
+    fs::remove_all(out);
+    RunTotals t = runSweep(c, {out.string(), false, false});
+    unsetenv("LODBENCH_TEST_DEVICE_TYPE");
+    ASSERT_EQ(t.ok, 1);
+    const fs::path caseFile = fs::directory_iterator(out / "cases")->path();
+    const auto j = nlohmann::json::parse(std::ifstream(caseFile));
+    const auto& cal = j["summary"]["calibration"];
+    EXPECT_EQ(cal["controlled"].get<bool>(), k.controlled) << cal.dump();
+    if (!k.controlled) {  // a calibrated case's flag is its measured drift: lavapipe's noise decides it
+      EXPECT_EQ(cal["flagged"].get<bool>(), k.flagged) << cal.dump();
+      EXPECT_FALSE(cal["reason"].get<std::string>().empty());
+    }
+    ReportOptions ro;
+    ro.runDir = out.string();
+    ro.html = false;
+    writeReport(ro);
+    std::ifstream md(out / "report" / "report.md");
+    const std::string page((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(page.find("Clock not controlled") != std::string::npos, k.flagged);
+    fs::remove_all(out);
   }
 }

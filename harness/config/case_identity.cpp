@@ -56,10 +56,16 @@ json measurementInputs(const Config& c) {
             {"timing", {{"modes", c.timing.modes}}}};
   // Since a config that grows resumes its folder (only the digests guard it), every setting that
   // shapes a case's records is here, defaults included.
-  if (c.timing.calibrate)
+  // Unset, calibration runs on every device but a CPU rasterizer: "when" says which rule applied.
+  if (c.timing.calibrate || !c.timing.calibrateSet)
     j["timing"]["calibration"] = {
-        {"level", c.timing.level},         {"frames", c.timing.frames},          {"max_tries", c.timing.maxTries},
-        {"tolerance", c.timing.tolerance}, {"drift_limit", c.timing.driftLimit}, {"min_load_s", c.timing.minLoadS}};
+        {"level", c.timing.level},
+        {"frames", c.timing.frames},
+        {"max_tries", c.timing.maxTries},
+        {"tolerance", c.timing.tolerance},
+        {"drift_limit", c.timing.driftLimit},
+        {"min_load_s", c.timing.minLoadS},
+        {"when", c.timing.calibrateSet ? "always" : "on a device that is not a CPU rasterizer"}};
   if (c.match.on())
     j["match"] = {{"metric", c.match.metric},
                   {"value", c.match.value},

@@ -29,6 +29,7 @@ void parseTimingSection(const ConfigReader& r, const json& j, Config& c) {
 
 void parseCalibrationSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("calibration")) {
+    c.timing.calibrateSet = true;
     const json& k = j["calibration"];
     if (k.is_boolean()) {
       c.timing.calibrate = k.get<bool>();

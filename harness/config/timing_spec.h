@@ -11,8 +11,11 @@ struct TimingSpec {
   std::vector<std::string> modes{"shaded"};
   // Calibration: uniform `level` on the case's grid and resolution, `frames` frames per run (their
   // median is the run's time), repeated until 3 consecutive runs lie within `tolerance` of each
-  // other or `maxTries` runs were made; again after the timed frames. Off unless configured.
+  // other or `maxTries` runs were made; again after the timed frames. `calibrate` holds the config's
+  // choice where `calibrateSet`; unset, it is on for every device that is not a CPU rasterizer
+  // (replay/timing_passes.h calibrationWanted): a real GPU's timings are wrong at an idle clock.
   bool calibrate = false;
+  bool calibrateSet = false;
   int level = 16, frames = 5, maxTries = 12;
   double tolerance = 0.01;   // stable: (max - min) / median of the last 3 runs
   double driftLimit = 0.02;  // flagged: |after / before - 1| above this

@@ -116,7 +116,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   // Clock control: a fixed workload until its time is stable, so every case starts at a settled clock.
   std::unique_ptr<Calibrator> calibrator;
   CalibrationRun calibrationBefore;
-  if (config.timing.calibrate) {
+  const bool calibrate = calibrationWanted(config.timing, ctx);
+  if (calibrate) {
     calibrator = std::make_unique<Calibrator>(ctx, terrain, settings, config.timing, pose(0));
     calibrationBefore = calibrator->untilStable();
   }
@@ -149,7 +150,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     if (!mismatch.empty()) throw std::runtime_error("timing modes disagree: " + mismatch);
     result.modeFrames[m] = std::move(replay);
   }
-  if (calibrator) result.calibration = calibrationJson(calibrationBefore, calibrator->runOnce(), config.timing);
+  result.calibration = calibrator ? calibrationJson(calibrationBefore, calibrator->runOnce(), config.timing)
+                                  : uncalibratedJson(config.timing, ctx);
   result.targetAreaPx = scheme->targetAreaPx(renderer.params());
 
   // Measurement passes run after every timed frame, so they cannot perturb the timings.

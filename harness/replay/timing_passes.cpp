@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "camera/camera_path.h"
 #include "error.h"
 #include "schemes/registry.h"
 #include "stats.h"
+#include "vk/context.h"
 
 namespace lb {
 
@@ -107,7 +109,8 @@ CalibrationRun Calibrator::untilStable() {
 nlohmann::json calibrationJson(const CalibrationRun& before, double afterMs, const TimingSpec& spec) {
   double b = before.ms(), a = afterMs * (1 + spec.testDrift);
   double drift = b > 0 ? a / b - 1 : NAN;
-  nlohmann::json j = {{"level", spec.level},
+  nlohmann::json j = {{"controlled", true},
+                      {"level", spec.level},
                       {"frames", spec.frames},
                       {"before_ms", b},
                       {"after_ms", a},
@@ -118,6 +121,25 @@ nlohmann::json calibrationJson(const CalibrationRun& before, double afterMs, con
                       {"flagged", !std::isfinite(drift) || std::abs(drift) > spec.driftLimit}};
   if (spec.testDrift != 0) j["test_drift"] = spec.testDrift;  // so no one mistakes it for data
   return j;
+}
+
+bool cpuRasterizer(const Context& ctx) {
+  const char* fake = std::getenv("LODBENCH_TEST_DEVICE_TYPE");
+  if (fake && std::string(fake) == "gpu") return false;
+  return ctx.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
+bool calibrationWanted(const TimingSpec& spec, const Context& ctx) {
+  return spec.calibrateSet ? spec.calibrate : !cpuRasterizer(ctx);
+}
+
+nlohmann::json uncalibratedJson(const TimingSpec& spec, const Context& ctx) {
+  const bool cpu = cpuRasterizer(ctx);
+  std::string reason = cpu ? "a CPU rasterizer: no GPU clock to control"
+                           : "clock not controlled: \"calibration\": false in the config, on a GPU whose clock may "
+                             "be anywhere between idle and boost";
+  if (cpu && spec.calibrateSet) reason += " (and \"calibration\": false in the config)";
+  return {{"controlled", false}, {"reason", reason}, {"flagged", !cpu}};
 }
 
 }  // namespace lb

@@ -57,4 +57,15 @@ class Calibrator {
 // right after the timed frames; flagged when |after / before - 1| > spec.driftLimit or unknown.
 nlohmann::json calibrationJson(const CalibrationRun& before, double afterMs, const TimingSpec& spec);
 
+// A CPU rasterizer (lavapipe) has no GPU clock to control. Tests pretend a GPU with
+// LODBENCH_TEST_DEVICE_TYPE=gpu, so the default and the flag below are testable on lavapipe.
+bool cpuRasterizer(const Context& ctx);
+// Whether a case calibrates: the config's choice where it made one, else on for every device that
+// is not a CPU rasterizer.
+bool calibrationWanted(const TimingSpec& spec, const Context& ctx);
+// The calibration record of a case that did not calibrate: {"controlled": false, "reason", "flagged"},
+// flagged on a GPU ("clock not controlled": its timings may come from any clock), not on a CPU
+// rasterizer.
+nlohmann::json uncalibratedJson(const TimingSpec& spec, const Context& ctx);
+
 }  // namespace lb

@@ -192,12 +192,17 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   else
     w.table(problems, "problems");
 
-  // Clock control: cases whose calibration workload drifted over the timed frames.
-  std::string flagged;
+  // Clock control: cases whose calibration workload drifted over the timed frames, and GPU cases
+  // that did not calibrate at all (their clock may have been anywhere).
+  std::string flagged, uncontrolled;
   int calibrated = 0;
   for (const ReportCase& c : run.cases) {
     auto cal = c.summary.find("calibration");
     if (cal == c.summary.end() || !cal->is_object()) continue;
+    if (!cal->value("controlled", true)) {
+      if (cal->value("flagged", false)) uncontrolled += (uncontrolled.empty() ? "" : ", ") + c.id;
+      continue;
+    }
     ++calibrated;
     if (cal->value("flagged", false)) {
       auto d = cal->find("drift");
@@ -211,6 +216,12 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
                ? "Clock control: no case's calibration drifted by more than 2% over its timed frames."
                : "Clock control: calibration drifted by more than 2% over the timed frames of " + flagged + ".",
            "note");
+  if (!uncontrolled.empty())
+    w.para(
+        "Clock not controlled (calibration turned off on a GPU, so these timings may come from any clock "
+        "between idle and boost): " +
+            uncontrolled + ".",
+        "caveat");
 
   w.heading(2, "Every case", "cases");
   std::vector<std::string> omitted;
