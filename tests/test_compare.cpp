@@ -423,14 +423,23 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }
 
-// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap) beside tessellated ones: compare
-// shows their LOD/draw split (medians of both sides, not judged) and gives tessellated cases none.
+// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap) and GPU-indirect ones (cbt, cbt-ts)
+// beside tessellated ones: compare shows their LOD/draw split (medians of both sides, not judged)
+// and gives tessellated cases none.
 TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
   const std::string base = std::string(LODBENCH_SOURCE_DIR) + "/results/baseline/ci/";
   CompareReport r = compareRuns(loadRun(base + "r1"), loadRun(base + "r2"), CompareOptions{});
-  int instanced = 0;
+  int instanced = 0, indirect = 0;
   for (const CaseComparison& c : r.cases) {
     const bool isInstanced = c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0;
+    if (c.id.rfind("cbt", 0) == 0) {  // GPU-indirect: the compute passes and the draw, no CPU selection
+      ++indirect;
+      ASSERT_EQ(c.split.size(), 2u) << c.id;
+      EXPECT_EQ(c.split[0].key, "lod_ms");
+      EXPECT_EQ(c.split[1].key, "draw_ms");
+      EXPECT_GT(c.split[0].baseline, 0.0) << c.id;
+      continue;
+    }
     if (!isInstanced) {
       EXPECT_TRUE(c.split.empty()) << c.id;
       continue;
@@ -442,6 +451,7 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
     EXPECT_GT(c.split[2].baseline, 0.0) << c.id;
   }
   EXPECT_EQ(instanced, 3);
+  EXPECT_EQ(indirect, 2);
   EXPECT_NE(verdictMarkdown(r).find("## LOD and draw"), std::string::npos);
   EXPECT_TRUE(verdictJson(r)["cases"][0].is_object());
 }
