@@ -53,8 +53,9 @@ uint32_t floatBits(float f) {
 }
 
 // The leaf mesh: a right triangle cut 2^s times along each leg, vertices (u, v) with u + v <= 2^s,
-// u towards corner a and v towards c. The map (u, v) -> b + u (a - b) + v (c - b) reverses the
-// orientation, so (u, v) triangles are clockwise to come out counter-clockwise in (x, z).
+// u towards corner a and v towards c. Wound so that the histogram pass sees the terrain's upper
+// side as front-facing, as the tessellated and instanced grids (the test compares their
+// back-facing shares from above).
 Footprint leafMesh(int s) {
   const int n = 1 << s;
   Footprint f;
@@ -68,8 +69,8 @@ Footprint leafMesh(int s) {
   auto idx = [&](int u, int v) { return at[size_t(u)][size_t(v)]; };
   for (int v = 0; v < n; ++v)
     for (int u = 0; u + v < n; ++u) {
-      f.indices.insert(f.indices.end(), {idx(u, v), idx(u, v + 1), idx(u + 1, v)});
-      if (u + v + 2 <= n) f.indices.insert(f.indices.end(), {idx(u + 1, v), idx(u, v + 1), idx(u + 1, v + 1)});
+      f.indices.insert(f.indices.end(), {idx(u, v), idx(u + 1, v), idx(u, v + 1)});
+      if (u + v + 2 <= n) f.indices.insert(f.indices.end(), {idx(u + 1, v), idx(u + 1, v + 1), idx(u, v + 1)});
     }
   return f;
 }

@@ -151,3 +151,21 @@ TEST_F(Cbt, CbtTsDrawsExactlyCbtsLeavesThroughTheTessellator) {
   }
   EXPECT_TRUE(severalDraws) << "no frame needed more than one draw: the split is untested";
 }
+
+// Seen from above, little of a heightfield faces away (steep flanks near the image border): under 5%
+// of the on-screen triangles are back-facing for cbt and cbt-ts, as for the tessellated uniform
+// grid. A leaf mesh wound the other way puts nearly all of them there, out of the size bins.
+TEST_F(Cbt, FromAboveEveryTriangleFacesTheCamera) {
+  const Heightfield& hf = testTerrain();
+  const CameraPose pose = firstPose("topdown.csv", hf);
+  for (const char* name : {"uniform", "cbt", "cbt-ts"}) {
+    Renderer r(gpu(), hf, {160, 90, 16});
+    r.setScheme(*findScheme(name), {});
+    if (r.statefulLod()) convergeLod(r, pose);
+    FrozenLod frozen(r);
+    TriangleHistogram h = r.measureHistogram(pose, pose);
+    const uint64_t onScreen = h.total() - h.offscreen;
+    EXPECT_GT(onScreen, 100u) << name;
+    EXPECT_LT(h.backfacing * 20, onScreen) << name << ": " << h.backfacing << " of " << onScreen << " back-facing";
+  }
+}
