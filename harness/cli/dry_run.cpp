@@ -134,7 +134,10 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
                  config.name.c_str());
   } else {
     EtaEstimator eta;
-    for (auto& [scheme, cost] : earlier.run["costs"].items()) {
+    for (auto& item : earlier.run["costs"].items()) {
+      // Plain names, not a structured binding: clang before 16 (the fuzz build) cannot capture one.
+      const std::string scheme = item.key();
+      const nlohmann::json& cost = item.value();
       if (scheme == "terrains" || !cost.is_object()) continue;
       auto add = [&](const char* key, auto fn) {
         if (cost.contains(key) && cost[key].is_number()) fn(cost[key].get<double>());
