@@ -117,6 +117,7 @@ GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, uint32_t perDraw) {
   g.maxDraws = perDraw == 0 ? 1 : (g.maxInstances + perDraw - 1) / perDraw;
   g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
   g.convergeLimit = 2 * D + 8;
+  g.overflowWord = LB_CBT_OVERFLOW;
   g.facts = {{"cbt_depth", double(D)},
              {"cbt_lattice_log2", double(L)},
              {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},

@@ -169,3 +169,26 @@ TEST_F(Cbt, FromAboveEveryTriangleFacesTheCamera) {
     EXPECT_LT(h.backfacing * 20, onScreen) << name << ": " << h.backfacing << " of " << onScreen << " back-facing";
   }
 }
+
+// Leaves beyond the record capacity are never drawn silently: planted by loading a state whose
+// capacity is 4 leaves, the replay of the next update fails with "LOD state overflow".
+TEST_F(Cbt, LeavesBeyondTheCapacityFailTheReplay) {
+  const Heightfield& hf = testTerrain();
+  Renderer r(gpu(), hf, {160, 90, 16});
+  r.setScheme(cbtScheme(), {});
+  const CameraPose pose = overviewPose();
+  convergeLod(r, pose);
+  EXPECT_EQ(r.lodOverflow(), 0u);
+  std::vector<uint32_t> state = r.readLodState();
+  ASSERT_GT(state[LB_CBT_LEAVES], 4u);
+  state[LB_CBT_CAPACITY] = 4;
+  r.loadLodState(state);
+  r.snapshotLodState();
+  LodReplay replay(r, [&](int) { return pose; }, {});
+  try {
+    replay.advanceTo(0);
+    ADD_FAILURE() << "the overflow passed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("LOD state overflow"), std::string::npos) << e.what();
+  }
+}

@@ -89,6 +89,9 @@ struct GpuLod {
   // Triangles one instance becomes (room for the mesh capture); 0: the footprint's own. A patch
   // footprint (a control shader) states what the tessellator makes of it.
   uint32_t trianglesPerInstance = 0;
+  // >= 0: the state word where the passes count instances beyond maxInstances, not drawn; the
+  // replay of a stateful scheme fails its case when an update leaves it above 0.
+  int64_t overflowWord = -1;
   // What the state's size follows from (a tree's depth, its bytes), recorded with the case.
   std::vector<std::pair<std::string, double>> facts;
 };

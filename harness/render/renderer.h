@@ -162,6 +162,9 @@ class Renderer {
   const std::vector<std::pair<std::string, double>>& gpuLodFacts() const { return gpuLod_.facts; }
   uint32_t updateLod(const CameraPose& pose);
   void setLodFrozen(bool frozen) { lodFrozen_ = frozen; }
+  // Instances the last updateLod left beyond the record capacity (drawn: none of them).
+  uint32_t lodOverflow() const { return lastLodOverflow_; }
+  uint32_t lodCapacity() const { return gpuIndirect_ ? gpuLod_.maxInstances : 0; }
   bool lodFrozen() const { return lodFrozen_; }
   // Instanced and GPU-indirect paths: every triangle's three world vertices drawn by the last measureHistogram
   // (captured by the histogram's geometry shader); empty on the tessellation path.
@@ -254,6 +257,7 @@ class Renderer {
   Buffer lodState_, lodSnapshot_, lodArgs_, lodArgsReadback_;
   bool lodFrozen_ = false;
   uint32_t lastLodInstances_ = 0;  // the instance count the last updateLod left
+  uint32_t lastLodOverflow_ = 0;   // and the instances it could not draw (GpuLod::overflowWord)
 };
 
 }  // namespace lb

@@ -50,8 +50,9 @@ void Renderer::createGpuLod() {
   lodArgs_ = createBufferWithData(
       ctx_, noDraw.data(), noDraw.size() * sizeof(uint32_t),
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  // Every slot's arguments, then the overflow word updateLod copies (GpuLod::overflowWord).
   lodArgsReadback_ =
-      createBuffer(ctx_, noDraw.size() * sizeof(uint32_t) * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      createBuffer(ctx_, (noDraw.size() * kSlots + 1) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   std::memset(lodArgsReadback_.mapped, 0, size_t(lodArgsReadback_.size));
   for (const GpuLodPass& pass : gpuLod_.passes) {
     if (pass.indirectWord >= 0 && uint64_t(pass.indirectWord + 3) > gpuLod_.initialState.size())
@@ -62,7 +63,9 @@ void Renderer::createGpuLod() {
   }
   gpuIndirect_ = true;
   lodFrozen_ = false;
-  lastLodInstances_ = 0;
+  lastLodInstances_ = lastLodOverflow_ = 0;
+  if (gpuLod_.overflowWord >= int64_t(gpuLod_.initialState.size()))
+    throw std::logic_error("scheme '" + name + "': overflow word outside the state");
 }
 
 void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
@@ -173,8 +176,17 @@ uint32_t Renderer::updateLod(const CameraPose& pose) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     copyLodArgs(cmd, si);
+    if (gpuLod_.overflowWord >= 0) {
+      VkBufferCopy word{VkDeviceSize(gpuLod_.overflowWord) * sizeof(uint32_t),
+                        VkDeviceSize(argsWords() * kSlots) * sizeof(uint32_t), sizeof(uint32_t)};
+      vkCmdCopyBuffer(cmd, lodState_.buffer, lodArgsReadback_.buffer, 1, &word);
+      memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                    VK_ACCESS_2_HOST_READ_BIT);
+    }
   });
   lastLodInstances_ = lodDrawn(si).instances;
+  lastLodOverflow_ =
+      gpuLod_.overflowWord >= 0 ? static_cast<const uint32_t*>(lodArgsReadback_.mapped)[argsWords() * kSlots] : 0;
   return lastLodInstances_;
 }
 

@@ -72,6 +72,10 @@ void LodReplay::advanceTo(int frame) {
   if (frame < next_ - 1) throw std::logic_error("LodReplay: frame " + std::to_string(frame) + " is behind the replay");
   for (; next_ <= frame; ++next_) {
     uint32_t n = r_.updateLod(pose_(next_));
+    if (r_.lodOverflow() > 0)  // the timed frame drew the same state: these instances were missing
+      throw std::runtime_error("LOD state overflow: frame " + std::to_string(next_) + " has " +
+                               std::to_string(r_.lodOverflow()) + " instances beyond the " +
+                               std::to_string(r_.lodCapacity()) + " the renderer holds, left undrawn");
     if (size_t(next_) < expected_.size() && n != expected_[size_t(next_)])
       throw diverged("the replay's", next_, n, expected_[size_t(next_)]);
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "report/report_answer.h"
 #include "schemes/registry.h"
 
 namespace lb {
@@ -50,13 +51,6 @@ std::string deviceName(const ReportRun& run) {
   return it != run.context.end() && it->is_string() ? it->get<std::string>() : "an unrecorded device";
 }
 
-bool softwareDevice(const std::string& device) {
-  std::string lower = device;
-  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  return lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
-         lower.find("swiftshader") != std::string::npos;
-}
-
 struct Row {
   const ReportCase* c;
   double gpuMedian;
@@ -89,7 +83,7 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
       "collapses, clipmap strips) of the measured frames. Unreachable targets are marked: the search "
       "stopped at the parameter's bound.";
   const std::string device = deviceName(run);
-  if (softwareDevice(device))
+  if (softwareRasterizer(device))
     out.caveat = "Caveat: " + device +
                  " is a software rasterizer. Tessellation is emulated on the CPU there, so these timings are no "
                  "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "

@@ -122,15 +122,23 @@ int repetitions(const ReportRun& run) {
   return r != config->end() && r->is_number_integer() ? std::max(1, r->get<int>()) : 1;
 }
 
+}  // namespace
+
+bool softwareRasterizer(const std::string& device) {
+  std::string lower = device;
+  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+  return lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
+         lower.find("swiftshader") != std::string::npos;
+}
+
+namespace {
+
 std::string deviceCaveat(const ReportRun& run) {
   auto it = run.context.find("device");
   const std::string device =
       it != run.context.end() && it->is_string() ? it->get<std::string>() : "an unrecorded device";
   std::string s = "Caveat: the GPU times come from " + device + " and rank the schemes on that device only";
-  std::string lower = device;
-  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  if (lower.find("llvmpipe") != std::string::npos || lower.find("lavapipe") != std::string::npos ||
-      lower.find("swiftshader") != std::string::npos)
+  if (softwareRasterizer(device))
     s += " (a software rasterizer on the CPU: its costs do not predict a hardware GPU's; tessellation is "
          "emulated on the CPU there, so timings across draw paths, tessellated against instanced, are no "
          "verdict on the tessellator)";

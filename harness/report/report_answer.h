@@ -15,5 +15,8 @@ std::vector<std::string> openingAnswer(const ReportRun& run);
 
 // The median of values (mean of the two middle ones for an even count); values must not be empty.
 double medianOf(std::vector<double> values);
+// A CPU rasterizer by its recorded device name (llvmpipe, lavapipe, SwiftShader): its timings are
+// no verdict on a GPU's, least of all across draw paths.
+bool softwareRasterizer(const std::string& device);
 
 }  // namespace lb
