@@ -42,12 +42,15 @@ json pathInputs(const std::string& path, FileDigests& files) {
 json measurementInputs(const Config& c) {
   json passes = json::array();
   for (auto& p : c.measure.passes) passes.push_back(p);
+  json measure = {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}};
+  // Named only when not the default, so digests of earlier sweeps still match.
+  if (c.measure.compute != "auto") measure["compute"] = c.measure.compute;
   json j = {{"grid", c.grid},
             {"fps", c.fps},
             {"warmup_frames", c.warmupFrames},
             {"max_frames", c.maxFrames},
             {"repetitions", c.repetitions},
-            {"measure", {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}}},
+            {"measure", measure},
             {"images",
              {{"frames", c.images.frames},
               {"modes", c.images.modes},

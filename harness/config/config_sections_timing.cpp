@@ -47,7 +47,7 @@ void parseCalibrationSection(const ConfigReader& r, const json& j, Config& c) {
 void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("measure")) {
     const json& me = j["measure"];
-    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold"});
+    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold", "compute"});
     c.measure.every = me.contains("every") ? r.integer(me["every"], "/measure/every", 0, 1000000) : 10;
     if (me.contains("passes")) {
       if (!me["passes"].is_array()) r.fail("/measure/passes", "expected an array of pass names");
@@ -62,6 +62,11 @@ void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
     }
     if (me.contains("diff_threshold"))
       c.measure.diffThreshold = r.integer(me["diff_threshold"], "/measure/diff_threshold", 0, 255);
+    if (me.contains("compute")) {
+      c.measure.compute = r.string(me["compute"], "/measure/compute");
+      if (c.measure.compute != "auto" && c.measure.compute != "gpu" && c.measure.compute != "cpu")
+        r.fail("/measure/compute", "'" + printable(c.measure.compute) + "' is not one of auto, gpu, cpu");
+    }
   }
 }
 

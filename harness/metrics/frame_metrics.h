@@ -22,6 +22,9 @@ struct FrameMetrics {
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
   std::map<std::string, std::string> unavailable;  // pass -> why the device cannot run it (its values are null)
+  // Wall seconds of each measurement pass on this frame (run.json measure_costs, the report's
+  // context table): where a measured frame's time goes.
+  std::map<std::string, double> costs;
 };
 
 // What image metrics (img_*), crack pixels and the images that show them compare against:

@@ -263,7 +263,8 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {uint32_t(settings_.width), uint32_t(settings_.height), 1};
-    vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &region);
+    VkBuffer dst = slot.target ? slot.target->buffer : readback_.buffer;
+    vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
   }
   if (capture || mode == RenderMode::Histogram) {
     // The geometry stage may only be named where the device enables geometry shaders.
@@ -273,9 +274,10 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
     memoryBarrier(cmd, writers, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_HOST_READ_BIT);
   }
-  if (slot.readback) {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                  VK_ACCESS_2_HOST_READ_BIT);
+  if (slot.readback) {  // read by the host, or by the compute passes of replay/measure_gpu.h
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
   VK_CHECK(vkEndCommandBuffer(cmd));
 }
@@ -349,18 +351,26 @@ void Renderer::finish() {
 
 std::vector<uint8_t> Renderer::renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
                                            FrameResult* result) {
+  renderInto(view, lod, mode, nullptr, result);
+  const auto* p = static_cast<const uint8_t*>(readback_.mapped);
+  return std::vector<uint8_t>(p, p + readback_.size);
+}
+
+void Renderer::renderInto(const CameraPose& view, const CameraPose& lod, RenderMode mode, const Buffer* target,
+                          FrameResult* result) {
   if (mode == RenderMode::Depth || mode == RenderMode::Frontend)
     throw std::logic_error("renderImage: timing modes depth and frontend write no colour image");
+  if (target && target->size < readback_.size) throw std::logic_error("renderInto: target buffer too small");
   finish();
   int si = nextSlot_;
   slots_[size_t(si)].readback = true;
+  slots_[size_t(si)].target = target;
   submitFrame(-1, view, lod, mode, /*capture=*/ctx_.enabledFeatures.vertexPipelineStoresAndAtomics);
   finish();
   slots_[size_t(si)].readback = false;
+  slots_[size_t(si)].target = nullptr;
   auto done = takeCompleted();
   if (result && !done.empty()) *result = done.back();
-  const auto* p = static_cast<const uint8_t*>(readback_.mapped);
-  return std::vector<uint8_t>(p, p + readback_.size);
 }
 
 uint64_t TriangleHistogram::total() const {

@@ -121,6 +121,10 @@ class Renderer {
   // Renders one frame synchronously and returns RGBA8 pixels (width * height * 4).
   std::vector<uint8_t> renderImage(const CameraPose& view, const CameraPose& lod, RenderMode mode,
                                    FrameResult* result = nullptr);
+  // The same frame copied into `target` (a device buffer of width * height * 4 bytes or more, with
+  // TRANSFER_DST usage) instead of host memory, for statistics reduced on the GPU; null: host memory.
+  void renderInto(const CameraPose& view, const CameraPose& lod, RenderMode mode, const Buffer* target,
+                  FrameResult* result = nullptr);
   // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
   std::vector<float> capturedLevels();
   // Which camera's frustum the control shaders cull with (FrameUniforms::frustum). Lod (default)
@@ -179,6 +183,7 @@ class Renderer {
     double cpuMs = 0;
     double harnessMs = 0;  // host time spent in submitFrame (uniforms, recording, submit)
     bool readback = false;
+    const Buffer* target = nullptr;  // renderInto's destination of the readback copy (null: readback_)
     // Instanced path: this frame's first instance and count per footprint, and its CPU LOD time.
     std::vector<uint32_t> instFirst, instCount;
     double lodCpuMs = -1;

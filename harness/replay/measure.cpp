@@ -1,5 +1,6 @@
 #include "replay/measure.h"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -36,6 +37,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
                           const RgbaImage* popBefore) {
   FrameMetrics m;
   m.frame = frame;
+  // Each pass's wall time, charged at the pass's end (lap): where a measured frame's time goes.
+  auto last = std::chrono::steady_clock::now();
+  auto lap = [&](const char* pass) {  // a pass that did not run (off) is not charged
+    auto now = std::chrono::steady_clock::now();
+    if (spec.on(pass) || pass == std::string("render") || pass == std::string("ray_cast"))
+      m.costs[pass] += std::chrono::duration<double>(now - last).count();
+    last = now;
+  };
   auto set = [&](const std::string& k, double v) { m.values.emplace_back(k, v); };
   const RenderSettings& rs = r.settings();
   // Live frame with factor capture: the basis for image metrics, cracks and saturation.
@@ -47,6 +56,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   const bool instanced = r.path() != DrawPath::Tessellation;  // instanced grid or GPU-indirect: no patches
   const std::vector<double> selectionCounts =
       r.path() == DrawPath::InstancedGrid ? r.lastSelection().counters : std::vector<double>{};
+  lap("render");
 
   bool histogram = spec.on("histogram");
   if (histogram) try {
@@ -73,6 +83,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     if (h.total() == h.offscreen + h.backfacing)
       m.unavailable["triangle_sizes"] = "no front-facing triangle on screen: tri_area_* and tri_frac_* are undefined";
   }
+  lap("histogram");
   if (spec.on("error")) {
     m.errorMap = r.renderErrorMap(current, current);
     std::vector<double> e;
@@ -84,6 +95,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
+    lap("error");
     // Surplus: the error-bounded scheme's triangles at the bound whose measured p95 matches this
     // frame's (replay/surplus.h).
     if (spec.on("surplus") && !e.empty()) {
@@ -93,16 +105,21 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       set("surplus_p95_px", sr.boundP95);
       set("surplus_triangles", sr.boundTriangles);
       set("surplus_matched", double(sr.matched));
+      lap("surplus");
     }
   }
   // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
-  if (spec.on("image") || spec.on("cracks")) m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+  if (spec.on("image") || spec.on("cracks")) {
+    m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+    lap("ray_cast");
+  }
   if (spec.on("image")) {
     ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);
     set("img_psnr_db", ie.psnrDb);
     set("img_ssim", ie.ssim);
     set("img_mad", ie.meanAbsDiff);
     set("img_frac_over", ie.fractionOver);
+    lap("image");
   }
   if (spec.on("cracks") && instanced) {
     // The drawn mesh, captured by the histogram pass (run for it here when the histogram is off).
@@ -120,6 +137,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("cracks_analytic", double(analyticCracks(scheme, params, terrain, rs.grid, levels)));
     set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
   }
+  lap("cracks");
   if (spec.on("popping")) {
     // A case's first frame has no previous frame: popping is undefined there (null), not 0, so
     // summaries average only frames that could pop.
@@ -133,6 +151,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_mean", pop.mean);
     set("pop_p99", pop.p99);
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
+    lap("popping");
   }
   // Saturation is a tessellation level at its cap; the instanced path's schemes count their own
   // limits (SchemeInfo::counters).

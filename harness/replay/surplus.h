@@ -1,9 +1,9 @@
 #pragma once
 // Surplus (docs/design.md, What is measured): the scheme's triangles / the triangles the error-bounded scheme (the
 // registered scheme whose main parameter has role MainParamRole::ErrorBoundPx) needs to reach the same measured error
-// statistic (p95 of the error map, px) on the same frame. Its bound is bisected (in log scale over
-// the parameter's range) with one error-map render per step until its p95 is within 2% of the
-// scheme's (docs/results-format.md, "Surplus").
+// statistic (p95 of the error map, px) on the same frame. Its bound is searched (in log scale over
+// the parameter's range: proportional steps, then regula falsi in the bracket) with one error-map
+// render per step until its p95 is within 2% of the scheme's (docs/results-format.md, "Surplus").
 #include <cstdint>
 #include <memory>
 #include <vector>

@@ -27,6 +27,7 @@ void endRunJson(json& run, const RunEnd& end) {
   run["end_time"] = isoTimeUtc();
   run["ray_cast_s_per_image"] = end.rayCastSPerImage >= 0 ? json(end.rayCastSPerImage) : json(nullptr);
   run["costs"] = end.costs;
+  run["measure_costs_ms"] = end.measureCosts;
   run["interrupted"] = end.interrupted;
   run["totals"] = {{"ok", end.ok}, {"failed", end.failed}, {"skipped", end.skipped}, {"cases", end.cases}};
   run["validation_errors"] = end.validationErrors;

@@ -17,6 +17,7 @@ nlohmann::json startedRunJson(const nlohmann::json& context, int shardIndex, int
 struct RunEnd {
   nlohmann::json costs;          // per scheme, and "terrains"
   double rayCastSPerImage = -1;  // < 0: no ray cast was made
+  nlohmann::json measureCosts;   // measureCostsJson over this invocation's measured frames
   bool interrupted = false;
   int ok = 0, failed = 0, skipped = 0;
   size_t cases = 0;

@@ -224,6 +224,17 @@ static json sourceJson(const Case& c, const TerrainSource& s) {
           {"sha256", inputs.is_object() && inputs.contains("sha256") ? inputs["sha256"] : json(nullptr)}};
 }
 
+json measureCostsJson(const std::vector<FrameMetrics>& metrics) {
+  if (metrics.empty()) return nullptr;
+  std::map<std::string, double> sum;
+  double total = 0;
+  for (const FrameMetrics& m : metrics)
+    for (const auto& [pass, s] : m.costs) sum[pass] += s, total += s;
+  json passes = json::object();
+  for (const auto& [pass, s] : sum) passes[pass] = 1e3 * s / double(metrics.size());
+  return {{"frames", metrics.size()}, {"measured_frame", 1e3 * total / double(metrics.size())}, {"passes", passes}};
+}
+
 json caseJson(const Case& c, const CaseResult& r) {
   std::map<int, const FrameMetrics*> measured;
   for (auto& m : r.metrics) measured[m.frame] = &m;
@@ -306,6 +317,7 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"status", r.status},
           {"reason", r.reason},
           {"seconds", r.seconds},
+          {"measure_costs_ms", measureCostsJson(r.metrics)},
           {"target_area_px", r.targetAreaPx > 0 ? json(r.targetAreaPx) : json(nullptr)},
           {"matched", r.matched},
           {"images", r.images},

@@ -43,6 +43,9 @@ std::string isoTimeUtc();
 nlohmann::json runContext(const Context& ctx, const Config& config);
 nlohmann::json caseSummary(const CaseResult& r);
 nlohmann::json caseJson(const Case& c, const CaseResult& r);
+// Wall ms per measured frame, in all and per measurement pass (FrameMetrics::costs); null without
+// measured frames. Case records' measure_costs_ms; run.json's sums them over the invocation.
+nlohmann::json measureCostsJson(const std::vector<FrameMetrics>& metrics);
 // frames.csv: case_id, the timing and metric columns, then scheme and one param_<name> column per
 // parameter any case of the run has (sorted; empty where a case's scheme has no such parameter).
 std::string framesCsvHeader(const std::vector<std::string>& params);

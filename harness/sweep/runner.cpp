@@ -109,6 +109,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   });
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
+  std::vector<FrameMetrics> costFrames;  // this invocation's measured frames, their pass costs only
   for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
     const Case& c = cases[i];
     std::string caseFile = totals.dir + "/cases/" + c.id + ".json";
@@ -137,6 +138,11 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       }
     }
     progress.endCase(r.status == "ok");
+    for (const FrameMetrics& m : r.metrics) {
+      FrameMetrics cost;
+      cost.costs = m.costs;
+      costFrames.push_back(std::move(cost));
+    }
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
@@ -167,6 +173,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     for (auto& [scheme, cost] : previous["costs"].items())
       if (scheme != "terrains" && !end.costs.contains(scheme)) end.costs[scheme] = cost;
   end.costs["terrains"] = stageCostsJson();  // no scheme is named "terrains"
+  end.measureCosts = measureCostsJson(costFrames);
   end.interrupted = totals.interrupted;
   end.ok = totals.ok;
   end.failed = totals.failed;
