@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "metrics/coverage.h"
 #include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/mesh_cracks.h"
@@ -80,7 +81,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       if (v >= 0) e.push_back(v);
     Summary s = summarize(e);
     if (e.empty())
-      m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
+      m.unavailable["error"] = "no terrain pixel drawn (every triangle clipped or culled): err_* undefined; coverage_missing_px counts what the truth shows";
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);
@@ -96,7 +97,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     }
   }
   // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
-  if (spec.on("image") || spec.on("cracks")) m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+  // Coverage rides on the truth the image or cracks pass needs (metrics/coverage.h).
+  if (spec.on("image") || spec.on("cracks")) {
+    m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+    const Coverage cov = coverageError(m.shaded, m.reference);
+    set("coverage_missing_px", double(cov.missing));
+    set("coverage_extra_px", double(cov.extra));
+    set("coverage_truth_px", double(cov.truthTerrain));
+  }
   if (spec.on("image")) {
     ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);
     set("img_psnr_db", ie.psnrDb);
