@@ -4,10 +4,14 @@
 // the case's summary and the compare gate instead of vanishing with the frame's null error.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "compare/compare.h"
 #include "gpu_fixture.h"
 #include "metrics/coverage.h"
 #include "replay/measure.h"
+#include "report_fixture.h"
 #include "results/write.h"
 #include "shaders/shared.h"
 #include "shaders/uniform_params.h"
@@ -143,9 +147,9 @@ TEST_F(CoverageGpu, SchemeCullingEveryPatchMissesAllTerrainAndFailsTheGate) {
   ASSERT_EQ(cr.cases.size(), 1u);
   EXPECT_EQ(cr.exitCode(), 1);
   const std::vector<std::string>& why = cr.cases[0].regressions;
-  EXPECT_NE(std::find(why.begin(), why.end(),
-                      "coverage: frame(s) 0 miss or add more than 2% of the truth's terrain pixels"),
-            why.end());
+  EXPECT_NE(
+      std::find(why.begin(), why.end(), "coverage: frame(s) 0 miss or add more than 2% of the truth's terrain pixels"),
+      why.end());
   bool missingWorse = false;
   for (auto& a : cr.cases[0].accuracy) missingWorse |= a.metric == "coverage_missing_px" && a.worse;
   EXPECT_TRUE(missingWorse);
@@ -189,4 +193,33 @@ TEST(Coverage, GateAllowsTheStatedSlackOnly) {
   };
   EXPECT_EQ(exitCode(near, "slack_near"), 0);
   EXPECT_EQ(exitCode(far, "slack_far"), 1);
+}
+
+// A case whose summary lists coverage failures is shown as an accuracy failure: a row under Failed
+// and skipped cases naming the frames, and named in the speed-vs-accuracy charts' caption.
+TEST(Coverage, ReportShowsACoverageFailure) {
+  namespace fs = std::filesystem;
+  const fs::path run = test::copyFixture("lodbench_report_coverage");
+  const std::string id = "sphere-tri_size8_proc129s1_flyover_96x54";
+  auto plant = [](nlohmann::json& summary) {
+    summary["coverage_failed_frames"] = {2};
+    summary["coverage_missing_px"] = {{"mean", 900.0}, {"max", 1800.0}};
+  };
+  nlohmann::json all = test::readJson(run / "summary.json");
+  for (auto& c : all["cases"])
+    if (c["case_id"] == id) plant(c["summary"]);
+  std::ofstream(run / "summary.json") << all.dump();
+  nlohmann::json one = test::readJson(run / "cases" / (id + ".json"));
+  plant(one["summary"]);
+  std::ofstream(run / "cases" / (id + ".json")) << one.dump();
+
+  test::writeNoHtml(run);
+  const std::string md = test::readText(run / "report/report.md");
+  EXPECT_NE(md.find("| `" + id +
+                    "` | sphere | tri_size 8 | flyover | ok | accuracy: terrain missing or extra beyond 2% of the "
+                    "truth's terrain pixels in measured frame(s) 2 |"),
+            std::string::npos)
+      << md.substr(md.find("Failed and skipped"), 1200);
+  EXPECT_NE(md.find("Accuracy failures plotted by their drawn pixels only"), std::string::npos);
+  EXPECT_NE(md.find("1800"), std::string::npos) << "the case table's missing terrain column";
 }

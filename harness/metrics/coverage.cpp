@@ -8,8 +8,8 @@ namespace lb {
 Coverage coverageError(const RgbaImage& shaded, const RgbaImage& truth) {
   if (shaded.width != truth.width || shaded.height != truth.height)
     throw std::invalid_argument("coverageError: frame " + std::to_string(shaded.width) + "x" +
-                                std::to_string(shaded.height) + " against truth " + std::to_string(truth.width) +
-                                "x" + std::to_string(truth.height));
+                                std::to_string(shaded.height) + " against truth " + std::to_string(truth.width) + "x" +
+                                std::to_string(truth.height));
   Coverage c;
   for (int y = 0; y < shaded.height; ++y)
     for (int x = 0; x < shaded.width; ++x) {

@@ -81,7 +81,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       if (v >= 0) e.push_back(v);
     Summary s = summarize(e);
     if (e.empty())
-      m.unavailable["error"] = "no terrain pixel drawn (every triangle clipped or culled): err_* undefined; coverage_missing_px counts what the truth shows";
+      m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
     set("err_mean_px", e.empty() ? kNan : s.mean);
     set("err_p95_px", e.empty() ? kNan : s.p95);
     set("err_max_px", e.empty() ? kNan : s.max);

@@ -201,7 +201,8 @@ json caseSummary(const CaseResult& r) {
   if (series.count("coverage_truth_px")) {
     json failed = json::array();
     for (const FrameMetrics& m : r.metrics)
-      if (double t = metricValue(m, "coverage_truth_px"); std::isfinite(t) &&
+      if (double t = metricValue(m, "coverage_truth_px");
+          std::isfinite(t) &&
           coverageFailed(metricValue(m, "coverage_missing_px"), metricValue(m, "coverage_extra_px"), t))
         failed.push_back(m.frame);
     out["coverage_failed_frames"] = failed;
