@@ -82,7 +82,7 @@ const Definition kDefinitions[] = {
     {"missing terrain px max",
      "pixels where the ray-cast truth shows terrain and the scheme drew none (culled or clipped terrain, coarse "
      "silhouettes, holes): the largest count over measured frames. Error statistics cover drawn pixels only, "
-     "so a frame missing more than 2% of the truth's terrain fails the case (Failed and skipped cases)."},
+     "so a frame missing more than 10% of the truth's terrain fails the case (Failed and skipped cases)."},
     {"extra terrain px max",
      "pixels where the scheme drew terrain and the ray-cast truth shows none: the largest count over measured "
      "frames."},
