@@ -8,6 +8,7 @@
 
 #include "compare/significance.h"
 #include "error.h"
+#include "metrics/coverage.h"
 
 namespace lb {
 
@@ -29,15 +30,23 @@ const char* const kCounterFields[] = {"patches", "tes_invocations", "clip_invoca
 const char* const kNewerCounterFields[] = {"instances", "draws"};
 
 bool isExactMeasurement(const std::string& key) {
-  return key.rfind("hist", 0) == 0 || key == "cracks_analytic" || key == "cracks_pixels";
+  return key.rfind("hist", 0) == 0 || key == "cracks_analytic" || key == "cracks_pixels" ||
+         key.rfind("coverage_", 0) == 0;
 }
 
 struct AccuracyMetric {
   const char* name;
   bool higherIsWorse;
+  double slack;  // allowed beyond the relative tolerance, in the metric's unit
 };
-const AccuracyMetric kAccuracyMetrics[] = {
-    {"err_mean_px", true}, {"err_p95_px", true}, {"img_psnr_db", false}, {"img_ssim", false}};
+// Coverage counts pixels: across devices a silhouette may rasterize a pixel apart, so a case's mean
+// may move by up to kCoverageSlackPx (on one device the exact check compares every frame's count).
+const AccuracyMetric kAccuracyMetrics[] = {{"err_mean_px", true, 1e-12},
+                                           {"err_p95_px", true, 1e-12},
+                                           {"img_psnr_db", false, 1e-12},
+                                           {"img_ssim", false, 1e-12},
+                                           {"coverage_missing_px", true, kCoverageSlackPx},
+                                           {"coverage_extra_px", true, kCoverageSlackPx}};
 
 // First record of each frame index (repetitions replay the same frames; their counters are equal).
 std::map<int, const json*> byFrame(const json& frames) {
@@ -187,6 +196,12 @@ bool summaryValue(const json& summary, const char* key, double& v) {
   return false;
 }
 
+std::string fmt(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", v);
+  return s;
+}
+
 void compareAccuracy(const CaseData& b, const CaseData& c, const CompareOptions& o, CaseComparison& cc) {
   for (auto& m : kAccuracyMetrics) {
     AccuracyCheck a;
@@ -197,20 +212,23 @@ void compareAccuracy(const CaseData& b, const CaseData& c, const CompareOptions&
       cc.regressions.push_back(std::string(m.name) + " present in the baseline, missing in the candidate");
       continue;
     }
-    double allowed = o.errorTolerance * std::abs(a.baseline) + 1e-12;
+    double allowed = o.errorTolerance * std::abs(a.baseline) + m.slack;
     a.worse = m.higherIsWorse ? a.candidate > a.baseline + allowed : a.candidate < a.baseline - allowed;
     cc.accuracy.push_back(a);
+  }
+  // Terrain missing from (or added to) a frame beyond metrics/coverage.h's tolerance fails the case
+  // whatever the baseline says: such a frame's err_* may be null and leave every mean above.
+  auto failed = c.summary.find("coverage_failed_frames");
+  if (failed != c.summary.end() && failed->is_array() && !failed->empty()) {
+    std::string frames;
+    for (auto& f : *failed) frames += (frames.empty() ? "" : ", ") + f.dump();
+    cc.regressions.push_back("coverage: frame(s) " + frames + " miss or add more than " +
+                             fmt(kCoverageTolerance * 100) + "% of the truth's terrain pixels");
   }
 }
 
 std::string ctxString(const json& ctx, const char* key) {
   return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : "";
-}
-
-std::string fmt(double v) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.4g", v);
-  return s;
 }
 
 }  // namespace

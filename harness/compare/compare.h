@@ -6,14 +6,19 @@
 //  - timing: the unit of evidence is the round (one run), not the frame: a t-test on the rounds'
 //    log median GPU ms (>= minRounds per side); a regression is significant (p < alpha) AND
 //    slower than 1 + threshold. With fewer rounds the ratio is reported without a verdict;
-//  - accuracy: screen-space error and image metrics may not get worse beyond a tolerance; a metric
-//    the baseline has and the candidate lacks is a regression.
+//  - accuracy: screen-space error, image and coverage metrics may not get worse beyond a tolerance
+//    (coverage: plus kCoverageSlackPx); a metric the baseline has and the candidate lacks is a
+//    regression; a candidate frame missing or adding terrain beyond metrics/coverage.h's tolerance
+//    (summary coverage_failed_frames) is a regression whatever the baseline.
 #include <string>
 #include <vector>
 
 #include "compare/run_data.h"
 
 namespace lb {
+
+// Coverage means (pixels) may rise by this much beyond the relative tolerance (see compare.cpp).
+constexpr double kCoverageSlackPx = 1.0;
 
 struct CompareOptions {
   double threshold = 0.10;       // timing: regression when ratio > 1 + threshold (and significant)

@@ -1,9 +1,17 @@
 #include "metrics/frame_metrics.h"
 
+#include <cmath>
+
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 
 namespace lb {
+
+double metricValue(const FrameMetrics& m, const std::string& key) {
+  for (auto& [k, v] : m.values)
+    if (k == key) return v;
+  return std::nan("");
+}
 
 std::vector<std::string> metricColumns() {
   std::vector<std::string> c;
@@ -33,6 +41,8 @@ std::vector<std::string> metricColumns() {
   // Every registered scheme's own counters, so all cases share one set of columns.
   for (const Scheme* s : allSchemes())
     for (const SchemeCounter& counter : s->info().counters) c.push_back(counter.frameKey);
+  // Newer columns go last, so the earlier ones keep their positions.
+  for (const char* n : {"coverage_missing_px", "coverage_extra_px", "coverage_truth_px"}) c.push_back(n);
   return c;
 }
 

@@ -31,6 +31,9 @@ struct FrameMetrics {
 // recorded in every case record as "image_reference" (docs/results-format.md).
 constexpr const char* kImageReference = "raycast";
 
+// The frame's value of metric `key`; NaN when the frame has none (pass off or unavailable).
+double metricValue(const FrameMetrics& m, const std::string& key);
+
 // Column names of the measurement part of frames.csv, in order.
 std::vector<std::string> metricColumns();
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "metrics/coverage.h"
 #include "metrics/cracks.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/mesh_cracks.h"
@@ -109,9 +110,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     }
   }
   // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
+  // Coverage rides on the truth the image or cracks pass needs (metrics/coverage.h).
   if (spec.on("image") || spec.on("cracks")) {
     m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
     lap("ray_cast");
+    const Coverage cov = coverageError(m.shaded, m.reference);
+    set("coverage_missing_px", double(cov.missing));
+    set("coverage_extra_px", double(cov.extra));
+    set("coverage_truth_px", double(cov.truthTerrain));
   }
   if (spec.on("image")) {
     ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);

@@ -26,6 +26,8 @@ constexpr Series kSeries[] = {
      "triangles reaching the clipper per frame", false},
     {"timeline_error", "err_mean_px", "Screen-space error along each path", "mean error px",
      "mean screen-space error over terrain pixels (px)", true},
+    {"timeline_coverage", "coverage_missing_px", "Missing terrain along each path", "missing px",
+     "pixels where the ray-cast truth shows terrain and the scheme drew none", true},
 };
 
 std::string fraction(int exponent) {  // 2^exponent as "1/8", "1/2", "1", "512"

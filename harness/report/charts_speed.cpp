@@ -57,7 +57,8 @@ json panel(const ReportRun& run, const Cost& cost, const ErrorKind& err, const s
                               {{"field", "params"}, {"title", "parameters"}},
                               {{"field", "err_px"}, {"title", std::string(err.label) + " (px)"}, {"format", ".3f"}},
                               {{"field", cost.field}, {"title", cost.axis}, {"format", ".4~g"}},
-                              {{"field", "on_front"}, {"title", "on the scheme's Pareto front"}}});
+                              {{"field", "on_front"}, {"title", "on the scheme's Pareto front"}},
+                              {{"field", "coverage_failed_frames"}, {"title", "frames missing terrain"}}});
   json layers = json::array();
   // Each scheme's Pareto front (the error-bounded scheme's own line is the dashed reference below).
   // Chart rows of that scheme carry "errbound": true.
@@ -111,6 +112,7 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
     chart.section = "speed";
     chart.title = cost.title;
     std::vector<std::string> unmeasured;
+    std::set<std::string> uncovered;  // cases with coverage failures: their error means skip what was not drawn
     std::map<std::string, std::vector<double>> costsOf;                         // by scenario: one y axis per row
     std::map<std::pair<std::string, std::string>, std::vector<double>> errsOf;  // by scenario and error kind
     const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
@@ -138,6 +140,9 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
         for (size_t i : paretoFront(xs, costs)) onFront[i] = true;
         for (size_t i = 0; i < cases.size(); ++i) {
           const ReportCase& c = *cases[i];
+          auto cov = c.summary.find("coverage_failed_frames");
+          const size_t failed = cov != c.summary.end() && cov->is_array() ? cov->size() : 0;
+          if (failed) uncovered.insert(c.label + " (" + c.scenario + ")");
           bool isBound = bounded && c.scheme == boundScheme;
           auto bound = c.params.find(boundParam);
           double sweep = isBound && bound != c.params.end() && bound->is_number() ? bound->get<double>() : xs[i];
@@ -151,7 +156,8 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
                                 {cost.field, costs[i]},
                                 {"on_front", bool(onFront[i])},
                                 {"errbound", isBound},
-                                {"sweep", sweep}});
+                                {"sweep", sweep},
+                                {"coverage_failed_frames", failed}});
           costsOf[c.scenario].push_back(costs[i]);
           errsOf[{c.scenario, err.label}].push_back(xs[i]);
           if (isBound) boundIn.insert(c.scenario);
@@ -193,6 +199,14 @@ std::vector<Chart> speedCharts(const ReportRun& run) {
       std::string list;
       for (auto& u : unmeasured) list += (list.empty() ? "" : ", ") + u;
       chart.caption = "Not shown (no error metrics): " + list + ".";
+    }
+    if (!uncovered.empty()) {
+      std::string list;
+      for (auto& u : uncovered) list += (list.empty() ? "" : ", ") + u;
+      chart.caption += std::string(chart.caption.empty() ? "" : " ") +
+                       "Accuracy failures plotted by their drawn pixels only (terrain missing or extra in some "
+                       "measured frames, docs/results-format.md, Coverage): " +
+                       list + ".";
     }
     charts.push_back(std::move(chart));
   }

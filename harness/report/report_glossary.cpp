@@ -79,6 +79,13 @@ const Definition kDefinitions[] = {
     {"cracks px max",
      "pixels where the background shows through although the truth has terrain: the largest "
      "count over measured frames (0 = watertight)."},
+    {"missing terrain px max",
+     "pixels where the ray-cast truth shows terrain and the scheme drew none (culled or clipped terrain, coarse "
+     "silhouettes, holes): the largest count over measured frames. Error statistics cover drawn pixels only, "
+     "so a frame missing more than 10% of the truth's terrain fails the case (Failed and skipped cases)."},
+    {"extra terrain px max",
+     "pixels where the scheme drew terrain and the ray-cast truth shows none: the largest count over measured "
+     "frames."},
     {"popping mean",
      "mean absolute RGB difference (0-255) between the frame drawn with the previous frame's LOD "
      "and with its own: mean over measured frames."},
@@ -99,7 +106,7 @@ const Definition kDefinitions[] = {
      "share of measured frames where a visible patch hit the largest factor, 64; the "
      "largest of the scheme's cases."},
     {"surplus: mean (cases' range)", "surplus (as in Every case), the mean over the scheme's cases and their range."},
-    {"worst frames", "links to the images of the frame where cracks, popping and error were worst."},
+    {"worst frames", "links to the images of the frame where cracks, popping, error and missing terrain were worst."},
     {"worst frame", "the measured frame where the case's value of the metric was worst."},
     {"images", "the worst frame's images, when the run wrote them."},
     {"scenario", "the scenario: camera path and terrain (row of the grid)."},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "metrics/coverage.h"
 #include "report/page_assets.h"
 #include "schemes/registry.h"
 
@@ -54,6 +55,8 @@ constexpr Column kCaseColumns[] = {
     {"PSNR dB", "img_psnr_db", "mean"},
     {"SSIM", "img_ssim", "mean"},
     {"cracks px max", "cracks_pixels", "max"},
+    {"missing terrain px max", "coverage_missing_px", "max"},
+    {"extra terrain px max", "coverage_extra_px", "max"},
     {"popping mean", "pop_mean", "mean"},
     {"surplus", "surplus", "mean"},
     {"measured frames", "measured_frames", ""},
@@ -85,7 +88,8 @@ struct Worst {
 };
 const Worst kWorst[] = {{"cracks_pixels", "cracks", {"cracks", "shaded", "wireframe"}},
                         {"pop_mean", "popping", {"shaded", "heatmap"}},
-                        {"err_p95_px", "error", {"error", "heatmap", "shaded"}}};
+                        {"err_p95_px", "error", {"error", "heatmap", "shaded"}},
+                        {"coverage_missing_px", "missing terrain", {"shaded", "error", "heatmap"}}};
 
 Cell worstCell(const ReportRun& run, const std::vector<const ReportCase*>& cases, const std::string& runHref) {
   std::vector<Cell> parts;
@@ -290,10 +294,21 @@ Table stabilityTable(const ReportRun& run, const std::string& runHref) {
 
 Table problemTable(const ReportRun& run) {
   Table t{{"case", "scheme", "parameters", "path", "status", "reason"}, {}, {}};
-  for (auto& c : run.cases)
-    if (c.status != "ok")
-      t.rows.push_back({codeCell(c.id), textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
-                        textCell(c.status), textCell(c.reason.empty() ? "(no reason recorded)" : c.reason)});
+  for (auto& c : run.cases) {
+    std::string reason = c.reason.empty() ? "(no reason recorded)" : c.reason;
+    // A case that ran but left terrain out of a frame (or added some) failed on accuracy: its
+    // error means cover drawn pixels only (metrics/coverage.h).
+    auto cov = c.summary.find("coverage_failed_frames");
+    if (c.status == "ok" && cov != c.summary.end() && cov->is_array() && !cov->empty()) {
+      reason = "accuracy: terrain missing or extra beyond " + formatValue(kCoverageTolerance * 100) +
+               "% of the truth's terrain pixels in measured frame(s)";
+      for (auto& f : *cov) reason += " " + f.dump();
+    } else if (c.status == "ok") {
+      continue;
+    }
+    t.rows.push_back({codeCell(c.id), textCell(c.scheme), textCell(c.paramsLabel), textCell(c.scenario),
+                      textCell(c.status), textCell(reason)});
+  }
   return t;
 }
 

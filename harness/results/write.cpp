@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "config/config.h"
+#include "metrics/coverage.h"
 #include "number_text.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
@@ -195,8 +196,19 @@ json caseSummary(const CaseResult& r) {
                                   : json(nullptr);
   for (const SchemeCounter* counter : counters)
     if (series.count(counter->frameKey)) out[counter->caseKey] = framesAbove[counter->frameKey];
+  // Coverage (metrics/coverage.h): the frames that miss or add terrain beyond the tolerance, one
+  // that drew nothing where the truth has terrain among them, though its err_* are null.
+  if (series.count("coverage_truth_px")) {
+    json failed = json::array();
+    for (const FrameMetrics& m : r.metrics)
+      if (double t = metricValue(m, "coverage_truth_px");
+          std::isfinite(t) &&
+          coverageFailed(metricValue(m, "coverage_missing_px"), metricValue(m, "coverage_extra_px"), t))
+        failed.push_back(m.frame);
+    out["coverage_failed_frames"] = failed;
+  }
   json wf = json::object();
-  for (const char* k : {"cracks_pixels", "cracks_analytic", "pop_mean", "err_p95_px"})
+  for (const char* k : {"cracks_pixels", "cracks_analytic", "pop_mean", "err_p95_px", "coverage_missing_px"})
     if (worst.count(k)) wf[k] = worst[k].second;
   out["worst_frames"] = wf;
   return out;
