@@ -11,6 +11,7 @@
 
 #include "metrics/raycast.h"
 #include "render/image_io.h"
+#include "replay/measure_gpu.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -87,6 +88,23 @@ const RgbaImage& ReferenceCache::image(const Heightfield& terrain, const std::st
     writePng(path, width, height, img.px);
   }
   return images_[key] = std::move(img);
+}
+
+ReferenceCache::ReferenceCache() = default;
+ReferenceCache::ReferenceCache(std::string dir) : dir_(std::move(dir)) {}
+ReferenceCache::~ReferenceCache() = default;
+
+MeasureGpu& ReferenceCache::gpu(Context& ctx, const Heightfield& terrain, const std::string& terrainKey, int width,
+                                int height) {
+  std::ostringstream key;
+  key << terrainKey << '|' << terrain.width << 'x' << terrain.height << '|' << terrain.extent << '|' << width << 'x'
+      << height;
+  if (!gpu_ || gpuKey_ != key.str()) {
+    gpu_.reset();  // the old buffers go before the new ones are made
+    gpu_ = std::make_unique<MeasureGpu>(ctx, terrain, width, height);
+    gpuKey_ = key.str();
+  }
+  return *gpu_;
 }
 
 }  // namespace lb
