@@ -31,12 +31,6 @@ struct Weights {  // std430 of reduce_ssim.glsl's Weights block
   double d[16];
 };
 
-void computeToComputeBarrier(VkCommandBuffer cmd) {
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-}
-
 }  // namespace
 
 GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
