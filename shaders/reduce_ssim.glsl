@@ -23,7 +23,8 @@ layout(std430, set = 0, binding = LB_REDUCE_BINDING_WEIGHTS) readonly buffer Wei
 
 const uint kTile = LB_RED_SSIM_TILE, kTaps = 2u * LB_SSIM_RADIUS + 1u, kIn = kTile + kTaps - 1u;
 shared REAL lx[kIn * kIn], ly[kIn * kIn];
-shared REAL across[5][kIn * kTile];  // x, y, xx, yy, xy filtered along rows
+// x, y, xx, yy, xy filtered along rows (named, not indexed: a compiler may put indexed locals in memory)
+shared REAL hx[kIn * kTile], hy[kIn * kTile], hxx[kIn * kTile], hyy[kIn * kTile], hxy[kIn * kTile];
 shared REAL total[kTile * kTile];
 
 REAL luma(uint p) {
@@ -42,28 +43,40 @@ void main() {
   }
   barrier();
   for (uint i = t; i < kIn * kTile; i += kTile * kTile) {
-    uint row = i / kTile, col = i % kTile;
-    REAL s[5] = REAL[5](0, 0, 0, 0, 0);
+    uint at = (i / kTile) * kIn + i % kTile;
+    REAL sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
     for (uint k = 0u; k < kTaps; ++k) {
-      REAL w = W(k), x = lx[row * kIn + col + k], y = ly[row * kIn + col + k];
-      s[0] += w * x;
-      s[1] += w * y;
-      s[2] += w * (x * x);
-      s[3] += w * (y * y);
-      s[4] += w * (x * y);
+      REAL w = W(k), x = lx[at + k], y = ly[at + k];
+      sx += w * x;
+      sy += w * y;
+      sxx += w * (x * x);
+      syy += w * (y * y);
+      sxy += w * (x * y);
     }
-    for (uint q = 0u; q < 5u; ++q) across[q][i] = s[q];
+    hx[i] = sx;
+    hy[i] = sy;
+    hxx[i] = sxx;
+    hyy[i] = syy;
+    hxy[i] = sxy;
   }
   barrier();
   uvec2 l = gl_LocalInvocationID.xy;
-  REAL f[5] = REAL[5](0, 0, 0, 0, 0);
-  for (uint k = 0u; k < kTaps; ++k)
-    for (uint q = 0u; q < 5u; ++q) f[q] += W(k) * across[q][(l.y + k) * kTile + l.x];
+  REAL mx = 0, my = 0, sxx = 0, syy = 0, sxy = 0;
+  for (uint k = 0u; k < kTaps; ++k) {
+    uint at = (l.y + k) * kTile + l.x;
+    REAL w = W(k);
+    mx += w * hx[at];
+    my += w * hy[at];
+    sxx += w * hxx[at];
+    syy += w * hyy[at];
+    sxy += w * hxy[at];
+  }
   uvec2 pos = origin + l;
   REAL v = 0;
   if (pos.x + kTaps - 1u < pc.width && pos.y + kTaps - 1u < pc.height) {
-    REAL vx = f[2] - f[0] * f[0], vy = f[3] - f[1] * f[1], cov = f[4] - f[0] * f[1];
-    REAL mx = f[0] + SHIFT, my = f[1] + SHIFT, c1 = W(LB_SSIM_C1), c2 = W(LB_SSIM_C2);
+    REAL vx = sxx - mx * mx, vy = syy - my * my, cov = sxy - mx * my, c1 = W(LB_SSIM_C1), c2 = W(LB_SSIM_C2);
+    mx += SHIFT;
+    my += SHIFT;
     v = ((2 * mx * my + c1) * (2 * cov + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
   }
   total[t] = v;
