@@ -137,8 +137,11 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd_, &bi));
-  vkCmdResetQueryPool(cmd_, timestamps_, 0, 2);
-  vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
+  const bool timed = timestampMask_ != 0;  // a queue without timestamp bits must write none
+  if (timed) {
+    vkCmdResetQueryPool(cmd_, timestamps_, 0, 2);
+    vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
+  }
   // The inputs were written by earlier submissions (renders, uploads); the words need clearing.
   memoryBarrier(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
@@ -157,7 +160,7 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
   vkCmdCopyBuffer(cmd_, result_.buffer, readback_.buffer, partialWords > 0 ? 2 : 1, regions);
   memoryBarrier(cmd_, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 1);
+  if (timed) vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 1);
   VK_CHECK(vkEndCommandBuffer(cmd_));
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
@@ -171,8 +174,8 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
   }
   uint64_t ts[2] = {};
   lastGpuMs_ = kNan;
-  if (timestampMask_ != 0 && vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ts, ts, sizeof ts[0],
-                                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+  if (timed && vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ts, ts, sizeof ts[0],
+                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
     lastGpuMs_ = double((ts[1] - ts[0]) & timestampMask_) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
   words_.resize(LB_RED_PARTIALS + partialWords);
   std::memcpy(words_.data(), readback_.mapped, words_.size() * 4);
