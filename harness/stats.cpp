@@ -14,19 +14,23 @@ bool lessNanLast(double a, double b) {
 
 // values must be sorted with lessNanLast and non-empty.
 double percentileSorted(const std::vector<double>& sorted, double q) {
-  q = std::min(100.0, std::max(0.0, q));  // NaN q ends up as 0
-  const double rank = q / 100.0 * static_cast<double>(sorted.size() - 1);
-  const size_t lo = static_cast<size_t>(std::floor(rank));
-  const size_t hi = std::min(lo + 1, sorted.size() - 1);
-  const double a = sorted[lo], b = sorted[hi], frac = rank - static_cast<double>(lo);
-  if (frac == 0.0) return a;
-  // numpy's _lerp: interpolating from the nearer end keeps results bit-identical to
-  // np.percentile(..., method="linear"), so analysis scripts can cross-check our numbers.
-  const double diff = b - a;
-  return frac >= 0.5 ? b - diff * (1.0 - frac) : a + diff * frac;
+  return percentileOfSorted(sorted.size(), q, [&](size_t i) { return sorted[i]; });
 }
 
 }  // namespace
+
+double percentileOfSorted(size_t n, double q, const std::function<double(size_t)>& at) {
+  q = std::min(100.0, std::max(0.0, q));  // NaN q ends up as 0
+  const double rank = q / 100.0 * static_cast<double>(n - 1);
+  const size_t lo = static_cast<size_t>(std::floor(rank));
+  const size_t hi = std::min(lo + 1, n - 1);
+  const double a = at(lo), frac = rank - static_cast<double>(lo);
+  if (frac == 0.0) return a;
+  // numpy's _lerp: interpolating from the nearer end keeps results bit-identical to
+  // np.percentile(..., method="linear"), so analysis scripts can cross-check our numbers.
+  const double b = at(hi), diff = b - a;
+  return frac >= 0.5 ? b - diff * (1.0 - frac) : a + diff * frac;
+}
 
 double percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;

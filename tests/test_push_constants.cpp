@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/probe.h"
+#include "shaders/reduce_params.h"
 #include "shaders/shared.h"
 #include "vk/resources.h"
 
@@ -97,6 +98,7 @@ TEST(PushConstants, EveryShaderBlockHasTheSizeOfItsCppMirror) {
       {"DrawPush", uint32_t(sizeof(lb::DrawPush))},
       {"ComputePush", uint32_t(sizeof(lb::ComputePush))},
       {"Probe", uint32_t(sizeof(lb::ProbePush))},
+      {"ReducePush", uint32_t(sizeof(lb::ReducePush))},
   };
   std::set<std::string> seen;
   for (const auto& entry : std::filesystem::directory_iterator(lb::shaderDir())) {

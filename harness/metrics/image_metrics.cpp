@@ -42,10 +42,23 @@ ImageError compareImages(const RgbaImage& a, const RgbaImage& b, int threshold) 
   return e;
 }
 
+const SsimConstants& ssimConstants() {
+  static const SsimConstants k = [] {
+    SsimConstants c{{}, {0.299, 0.587, 0.114}, std::pow(0.01 * 255, 2), std::pow(0.03 * 255, 2)};
+    const double sigma = 1.5;
+    double sum = 0;
+    for (int i = 0; i < 11; ++i) sum += c.window[i] = std::exp(-double((i - 5) * (i - 5)) / (2 * sigma * sigma));
+    for (double& v : c.window) v /= sum;
+    return c;
+  }();
+  return k;
+}
+
 static std::vector<double> luma(const RgbaImage& img) {
+  const double* w = ssimConstants().luma;
   std::vector<double> y(size_t(img.width) * size_t(img.height));
   for (size_t i = 0; i < y.size(); ++i)
-    y[i] = 0.299 * img.px[i * 4] + 0.587 * img.px[i * 4 + 1] + 0.114 * img.px[i * 4 + 2];
+    y[i] = w[0] * img.px[i * 4] + w[1] * img.px[i * 4 + 1] + w[2] * img.px[i * 4 + 2];
   return y;
 }
 
@@ -71,12 +84,10 @@ static std::vector<double> filterValid(const std::vector<double>& in, int w, int
 double ssim(const RgbaImage& a, const RgbaImage& b) {
   checkSameSize(a, b);
   const int kSize = 11;
-  const double kSigma = 1.5, c1 = std::pow(0.01 * 255, 2), c2 = std::pow(0.03 * 255, 2);
+  const SsimConstants& constants = ssimConstants();
+  const double c1 = constants.c1, c2 = constants.c2;
   if (a.width < kSize || a.height < kSize) throw std::invalid_argument("SSIM needs images of at least 11x11");
-  std::vector<double> k(kSize);
-  double sum = 0;
-  for (int i = 0; i < kSize; ++i) sum += k[size_t(i)] = std::exp(-double((i - 5) * (i - 5)) / (2 * kSigma * kSigma));
-  for (double& v : k) v /= sum;
+  const std::vector<double> k(constants.window, constants.window + kSize);
   auto x = luma(a), y = luma(b);
   std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
   for (size_t i = 0; i < x.size(); ++i) {

@@ -22,6 +22,13 @@ constexpr double kPsnrIdentical = 100.0;
 
 ImageError compareImages(const RgbaImage& a, const RgbaImage& b, int threshold = 16);
 double ssim(const RgbaImage& a, const RgbaImage& b);
+// SSIM's constants, read by ssim() and by the GPU pass (metrics/gpu_reduce.h) alike.
+struct SsimConstants {
+  double window[11];  // the normalised Gaussian (sigma 1.5), one axis of the separable window
+  double luma[3];     // Rec. 601 weights of R, G, B
+  double c1, c2;      // (0.01 x 255)^2, (0.03 x 255)^2
+};
+const SsimConstants& ssimConstants();
 
 // The clear colour (magenta) marks pixels no terrain covers.
 bool isClear(const RgbaImage& img, int x, int y);

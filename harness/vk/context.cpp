@@ -256,6 +256,7 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;                              // wireframe images only
   ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
   ctx.enabledFeatures.geometryShader = have.geometryShader;                                  // measurement passes only
+  ctx.enabledFeatures.shaderFloat64 = have.shaderFloat64;  // GPU SSIM in double (metrics/gpu_reduce.h)
   // GPU-indirect schemes that split their draw (cbt-ts): a count and first instances from the GPU.
   ctx.enabledFeatures.multiDrawIndirect = have.multiDrawIndirect;
   ctx.enabledFeatures.drawIndirectFirstInstance = have.drawIndirectFirstInstance;

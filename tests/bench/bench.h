@@ -20,6 +20,10 @@ void benchSummarize(benchmark::State& state, int n);                     // summ
 void benchPercentile(benchmark::State& state, int n);                    // percentile() of n frame times
 void benchCompareImages(benchmark::State& state, int width, int height);
 void benchSsim(benchmark::State& state, int width, int height);
+// A measured frame's image and error statistics: GpuReduce's compare + errorStats (wall time per
+// iteration; counter gpu_ms: their GPU time) and the CPU's compareImages + summarize.
+void benchGpuReduce(benchmark::State& state, int width, int height);
+void benchCpuReduce(benchmark::State& state, int width, int height);
 void benchWriteCase(benchmark::State& state, int frames);  // caseJson + writeFileAtomic
 void benchMannWhitney(benchmark::State& state, int n);     // lodbench compare's test, n per side
 void benchBootstrap(benchmark::State& state, int n);       // its ratio interval, n per side

@@ -35,6 +35,8 @@ std::vector<Entry> table() {
       {"BM_StatsBootstrap/300", [](auto& s) { benchBootstrap(s, 300); }},
       {"BM_CompareImages/320x180", [](auto& s) { benchCompareImages(s, 320, 180); }},
       {"BM_Ssim/320x180", [](auto& s) { benchSsim(s, 320, 180); }},
+      {"BM_GpuReduce1080p", [](auto& s) { benchGpuReduce(s, 1920, 1080); }},
+      {"BM_CpuReduce1080p", [](auto& s) { benchCpuReduce(s, 1920, 1080); }},
       {"BM_WriteCase/300", [](auto& s) { benchWriteCase(s, 300); }},
   };
   // Every scheme in the registry: a new scheme gets its benchmark without an edit here.
