@@ -12,7 +12,7 @@ layout(std430, set = 0, binding = LB_REDUCE_BINDING_B) readonly buffer ImageB { 
 layout(std430, set = 0, binding = LB_REDUCE_BINDING_RESULT) buffer Result { uint words[]; };
 
 shared uint hist[256];
-shared uint sums[7];
+shared uint sums[8];
 
 // The clear colour (magenta, alpha ignored) as image_metrics.cpp isClear reads it.
 bool clearPx(uint p) { return (p & 0xffffffu) == 0xff00ffu; }
@@ -39,12 +39,12 @@ void add64(uint at, uint v) {
 void main() {
   uint t = gl_LocalInvocationID.x;
   hist[t] = 0u;
-  if (t < 7u) sums[t] = 0u;
+  if (t < 8u) sums[t] = 0u;
   barrier();
   uint n = pc.width * pc.height;
   uint first = gl_WorkGroupID.x * (LB_RED_IMAGE_GROUP * LB_RED_IMAGE_PER_THREAD);
   // Per thread at most 16 x 3 x 255^2 < 2^32; a workgroup's 4096 pixels stay below 2^32 too.
-  uint sq = 0u, abssum = 0u, over = 0u, changed = 0u, missing = 0u, extra = 0u, candidates = 0u;
+  uint sq = 0u, abssum = 0u, over = 0u, changed = 0u, missing = 0u, extra = 0u, candidates = 0u, truth = 0u;
   for (uint k = 0u; k < LB_RED_IMAGE_PER_THREAD; ++k) {
     uint i = first + k * LB_RED_IMAGE_GROUP + t;
     if (i >= n) break;
@@ -64,6 +64,7 @@ void main() {
     }
     bool ca = clearPx(pa), cb = clearPx(pb);
     extra += !ca && cb ? 1u : 0u;
+    truth += cb ? 0u : 1u;
     if (ca && !cb) {
       ++missing;
       int x = int(i % pc.width), y = int(i / pc.width);
@@ -77,6 +78,7 @@ void main() {
   atomicAdd(sums[4], missing);
   atomicAdd(sums[5], extra);
   atomicAdd(sums[6], candidates);
+  atomicAdd(sums[7], truth);
   barrier();
   if (hist[t] > 0u) atomicAdd(words[LB_RED_DIFF_HIST + t], hist[t]);
   if (t == 0u) {
@@ -84,5 +86,6 @@ void main() {
     add64(LB_RED_SUM_ABS, sums[1]);
     for (uint k = 2u; k < 7u; ++k)
       if (sums[k] > 0u) atomicAdd(words[LB_RED_OVER + k - 2u], sums[k]);
+    if (sums[7] > 0u) atomicAdd(words[LB_RED_TRUTH_TERRAIN], sums[7]);
   }
 }

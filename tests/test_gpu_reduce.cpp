@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "gpu_fixture.h"
+#include "metrics/coverage.h"
 #include "metrics/gpu_reduce.h"
 #include "metrics/image_metrics.h"
 #include "metrics/raycast.h"
@@ -74,6 +75,8 @@ double expectCompareAsCpu(GpuReduce& r, const RgbaImage& a, const RgbaImage& b) 
   EXPECT_EQ(g.coverageMissing, c.missing);
   EXPECT_EQ(g.coverageExtra, c.extra);
   EXPECT_EQ(g.crackCandidates, c.candidates);
+  EXPECT_EQ(g.truthTerrain, coverageError(a, b).truthTerrain);  // metrics/coverage.h, the CPU path's
+  EXPECT_EQ(g.coverageMissing, coverageError(a, b).missing);
   if (g.crackCandidates == 0) {
     EXPECT_EQ(crackPixels(a, b), 0);
   }

@@ -22,6 +22,7 @@ struct GpuImageStats {
   ImageError e;
   long coverageMissing = 0;  // pixels clear (isClear) in `a` where `b` is not clear
   long coverageExtra = 0;    // pixels not clear in `a` where `b` is clear
+  long truthTerrain = 0;     // pixels not clear in `b` (coverage's denominator)
   // Pixels clear in `a`, not clear in `b`, and enclosed by a's terrain within `reach` on both sides
   // horizontally or vertically: crackPixels' local conditions (not its background flood fill). 0
   // proves crackPixels(a, b) == 0, so a caller reads images back only when it is > 0.

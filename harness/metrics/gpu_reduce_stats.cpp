@@ -71,6 +71,7 @@ GpuImageStats GpuReduce::compare(const Buffer& a, const Buffer& b, int threshold
   s.coverageMissing = long(w[LB_RED_MISSING]);
   s.coverageExtra = long(w[LB_RED_EXTRA]);
   s.crackCandidates = long(w[LB_RED_CANDIDATES]);
+  s.truthTerrain = long(w[LB_RED_TRUTH_TERRAIN]);
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include "metrics/histogram_stats.h"
 #include "metrics/mesh_cracks.h"
 #include "render/image_io.h"
+#include "replay/measure_gpu.h"
 #include "replay/popping.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
@@ -32,10 +33,30 @@ static double saturatedPatches(const std::vector<float>& levels, Partitioning p)
   return double(n);
 }
 
+// Crack pixels of the live frame against the truth; on the GPU path 0 without a read-back where no
+// pixel meets crackPixels' local conditions (GpuImageStats::crackCandidates).
+static long cracks(FrameMetrics& m, const GpuImageStats* gs, const RenderSettings& rs) {
+  if (gs && gs->crackCandidates == 0) {
+    m.crackMask.assign(size_t(rs.width) * size_t(rs.height), 0);
+    return 0;
+  }
+  return crackPixels(m.shaded, m.reference, &m.crackMask);
+}
+
+// The CPU path's error statistics, as GpuReduce::errorStats reports them (exact here).
+static GpuErrorStats errorStats(const std::vector<float>& map) {
+  std::vector<double> e;
+  for (float v : map)
+    if (v >= 0) e.push_back(v);
+  Summary s = summarize(e);
+  if (e.empty()) return {0, kNan, kNan, kNan};
+  return {long(e.size()), s.mean, s.p95, s.max};
+}
+
 FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const ParamValues& params,
                           const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
                           ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current,
-                          const RgbaImage* popBefore) {
+                          const RgbaImage* popBefore, bool keepPixels) {
   FrameMetrics m;
   m.frame = frame;
   // Each pass's wall time, charged at the pass's end (lap): where a measured frame's time goes.
@@ -48,9 +69,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   };
   auto set = [&](const std::string& k, double v) { m.values.emplace_back(k, v); };
   const RenderSettings& rs = r.settings();
+  // On the GPU path (replay/measure_gpu.h) frames stay in device buffers and only numbers come back.
+  MeasureGpu* g = measureOnGpu(spec, ctx) ? &refs.gpu(ctx, terrain, terrainKey, rs.width, rs.height) : nullptr;
   // Live frame with factor capture: the basis for image metrics, cracks and saturation.
   FrameResult live;
-  m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded, &live)};
+  if (g)
+    r.renderInto(current, current, RenderMode::Shaded, &g->shaded, &live);
+  else
+    m.shaded = {rs.width, rs.height, r.renderImage(current, current, RenderMode::Shaded, &live)};
   std::vector<float> levels = r.capturedLevels();
   // The instanced path decides its LOD on the CPU: the scheme's own counts of this pose are those of
   // the selection just drawn, taken before another pass selects again.
@@ -86,21 +112,25 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   }
   lap("histogram");
   if (spec.on("error")) {
-    m.errorMap = r.renderErrorMap(current, current);
-    std::vector<double> e;
-    for (float v : m.errorMap)
-      if (v >= 0) e.push_back(v);
-    Summary s = summarize(e);
-    if (e.empty())
+    GpuErrorStats s;
+    if (g) {
+      r.renderInto(current, current, RenderMode::Error, &g->error);
+      s = g->reduce.errorStats(g->error);
+      if (keepPixels) m.errorMap = g->readFloats(g->error);
+    } else {
+      m.errorMap = r.renderErrorMap(current, current);
+      s = errorStats(m.errorMap);
+    }
+    if (s.count == 0)
       m.unavailable["error"] = "no terrain pixel on screen (every triangle clipped or culled): err_* undefined";
-    set("err_mean_px", e.empty() ? kNan : s.mean);
-    set("err_p95_px", e.empty() ? kNan : s.p95);
-    set("err_max_px", e.empty() ? kNan : s.max);
+    set("err_mean_px", s.mean);
+    set("err_p95_px", s.p95);
+    set("err_max_px", s.max);
     lap("error");
     // Surplus: the error-bounded scheme's triangles at the bound whose measured p95 matches this
     // frame's (replay/surplus.h).
-    if (spec.on("surplus") && !e.empty()) {
-      SurplusResult sr = refs.surplus.match(ctx, terrain, rs, current, s.p95, live.stats.clipInvocations);
+    if (spec.on("surplus") && s.count > 0) {
+      SurplusResult sr = refs.surplus.match(ctx, terrain, rs, current, s.p95, live.stats.clipInvocations, g);
       set("surplus", sr.surplus);
       set("surplus_bound_px", sr.boundPx);
       set("surplus_p95_px", sr.boundP95);
@@ -111,16 +141,31 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   }
   // Image metrics and crack pixels read the ray-cast ground truth (kImageReference), not `reference`.
   // Coverage rides on the truth the image or cracks pass needs (metrics/coverage.h).
+  // The GPU path's comparison also counts coverage and crack candidates, so it runs for either pass.
+  GpuImageStats gs;
   if (spec.on("image") || spec.on("cracks")) {
-    m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
-    lap("ray_cast");
-    const Coverage cov = coverageError(m.shaded, m.reference);
+    Coverage cov;
+    if (g) {
+      g->castTruth(current);
+      lap("ray_cast");
+      gs = g->reduce.compare(g->shaded, g->truth, spec.diffThreshold, spec.on("image"));
+      cov = {gs.coverageMissing, gs.coverageExtra, gs.truthTerrain};
+      // Pixels only where a caller keeps them, or where crack candidates need the CPU's flood fill.
+      if (keepPixels || (spec.on("cracks") && gs.crackCandidates > 0)) {
+        m.shaded = g->readImage(g->shaded);
+        m.reference = g->readImage(g->truth);
+      }
+    } else {
+      m.reference = refs.image(ctx, terrain, terrainKey, rs, current);
+      lap("ray_cast");
+      cov = coverageError(m.shaded, m.reference);
+    }
     set("coverage_missing_px", double(cov.missing));
     set("coverage_extra_px", double(cov.extra));
     set("coverage_truth_px", double(cov.truthTerrain));
   }
   if (spec.on("image")) {
-    ImageError ie = compareImages(m.shaded, m.reference, spec.diffThreshold);
+    ImageError ie = g ? gs.e : compareImages(m.shaded, m.reference, spec.diffThreshold);
     set("img_psnr_db", ie.psnrDb);
     set("img_ssim", ie.ssim);
     set("img_mad", ie.meanAbsDiff);
@@ -138,10 +183,10 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       m.unavailable["cracks_analytic"] = e.what();
     }
     set("cracks_analytic", analytic);
-    set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
+    set("cracks_pixels", double(cracks(m, g ? &gs : nullptr, rs)));
   } else if (spec.on("cracks")) {
     set("cracks_analytic", double(analyticCracks(scheme, params, terrain, rs.grid, levels)));
-    set("cracks_pixels", double(crackPixels(m.shaded, m.reference, &m.crackMask)));
+    set("cracks_pixels", double(cracks(m, g ? &gs : nullptr, rs)));
   }
   lap("cracks");
   if (spec.on("popping")) {
@@ -149,10 +194,11 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     // summaries average only frames that could pop.
     PopResult pop{kNan, kNan, 0};
     if (frame > 0 && popBefore) {  // a stateful LOD: its previous state from this view, against this one
-      ImageError e = compareImages(*popBefore, m.shaded);
+      ImageError e = g ? g->reduce.compare(g->reduce.upload(*popBefore), g->shaded, 16, false).e
+                       : compareImages(*popBefore, m.shaded);
       pop = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
     } else if (frame > 0) {
-      pop = measurePopping(r, previous, current);
+      pop = measurePopping(r, previous, current, g);
     }
     set("pop_mean", pop.mean);
     set("pop_p99", pop.p99);

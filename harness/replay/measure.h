@@ -25,10 +25,12 @@ struct Heightfield;
 
 // `popBefore`: a stateful LOD's previous state drawn from this frame's view (replay/lod_replay.h),
 // which popping compares with this frame; null: popping draws the previous LOD camera's selection.
+// keepPixels: the frame's shaded image, truth and error map in FrameMetrics even where the statistics
+// were reduced on the GPU (replay/measure_gpu.h; the crack mask is always there when cracks run).
 FrameMetrics measureFrame(Context& ctx, Renderer& renderer, const Scheme& scheme, const ParamValues& params,
                           const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
                           ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current,
-                          const RgbaImage* popBefore = nullptr);
+                          const RgbaImage* popBefore = nullptr, bool keepPixels = false);
 
 // Error map visualisation: 0 px black .. >= 8 px white (sqrt scale), sky (kSkyRgba) where no terrain.
 RgbaImage errorImage(const std::vector<float>& error, int width, int height);

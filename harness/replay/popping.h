@@ -8,6 +8,7 @@
 namespace lb {
 
 class Renderer;
+class MeasureGpu;
 
 struct PopResult {
   double mean = 0;   // mean over pixels of the mean absolute RGB difference, 0..255
@@ -20,6 +21,8 @@ struct PopResult {
 // (Renderer::CullCamera::View, restored afterwards), and compares them with compareImages. Uses the
 // renderer's scheme; waits for frames in flight. previous == current gives exactly zero (the
 // renderer is deterministic). Back-face tests that use the LOD eye (phong) still use `previous`.
-PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current);
+// With `gpu`, both frames stay on the device and are compared there (the same numbers, exactly).
+PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current,
+                         MeasureGpu* gpu = nullptr);
 
 }  // namespace lb

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "camera/camera_path.h"
+#include "replay/measure_gpu.h"
 #include "schemes/registry.h"
 #include "stats.h"
 #include "terrain/heightfield.h"
@@ -24,7 +25,8 @@ double errorP95(const std::vector<float>& errorMap) {
 }
 
 SurplusResult SurplusMatcher::match(Context& ctx, const Heightfield& terrain, const RenderSettings& settings,
-                                    const CameraPose& pose, double target, uint64_t schemeTriangles) {
+                                    const CameraPose& pose, double target, uint64_t schemeTriangles,
+                                    MeasureGpu* gpu) {
   const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
   if (!bounded) throw std::logic_error("surplus: no registered scheme has an error-bound main parameter");
   const SchemeInfo& info = bounded->info();
@@ -49,10 +51,14 @@ SurplusResult SurplusMatcher::match(Context& ctx, const Heightfield& terrain, co
   auto eval = [&](double bound) {
     renderer_->setUniformParams({{info.mainParam, bound}});
     FrameResult fr;
+    ++out.renders;
+    if (gpu) {
+      renderer_->renderInto(pose, pose, RenderMode::Error, &gpu->surplusError, &fr);
+      return Sample{bound, gpu->reduce.errorStats(gpu->surplusError).p95, double(fr.stats.clipInvocations)};
+    }
     std::vector<uint8_t> bytes = renderer_->renderImage(pose, pose, RenderMode::Error, &fr);
     std::vector<float> px(bytes.size() / sizeof(float));
     std::memcpy(px.data(), bytes.data(), px.size() * sizeof(float));
-    ++out.renders;
     return Sample{bound, errorP95(px), double(fr.stats.clipInvocations)};
   };
   auto within = [&](const Sample& s) { return std::abs(s.p95 - target) <= kTolerance * target; };

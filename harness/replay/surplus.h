@@ -15,6 +15,7 @@ namespace lb {
 struct Context;
 struct CameraPose;
 struct Heightfield;
+class MeasureGpu;
 
 struct SurplusResult {
   double surplus = 0;   // NaN when no bound brackets the target (see matched)
@@ -34,8 +35,9 @@ double errorP95(const std::vector<float>& errorMap);
 // Keeps one error-bounded renderer per terrain and settings across the measured frames of a case.
 class SurplusMatcher {
  public:
+  // With `gpu`, each trial's error map stays on the device and its p95 is reduced there.
   SurplusResult match(Context& ctx, const Heightfield& terrain, const RenderSettings& settings, const CameraPose& pose,
-                      double targetP95, uint64_t schemeTriangles);
+                      double targetP95, uint64_t schemeTriangles, MeasureGpu* gpu = nullptr);
 
  private:
   std::unique_ptr<Renderer> renderer_;
