@@ -1,0 +1,251 @@
+// The ray-cast ground truth on the GPU: metrics/raycast.cpp castRay and metrics/raycast_shade.cpp
+// shadeTerrain, one thread per pixel. Every formula keeps the CPU oracle's operation order and is
+// `precise` (no fused multiply-add), so where the device runs it in double (raycast.comp) the hits,
+// distances and colours are the oracle's; raycast_f32.comp (LB_RAYCAST_F32) is the same in float
+// for devices without shaderFloat64.
+#include "raycast_params.h"
+
+#ifdef LB_RAYCAST_F32
+#define real float
+#define real2 vec2
+#define real3 vec3
+#define real4 vec4
+#define realMat4 mat4
+const real kEps = 1e-9;  // below float's resolution at 1: the slack of castRay has no effect here
+const real kBig = 3e38;
+#else
+#define real double
+#define real2 dvec2
+#define real3 dvec3
+#define real4 dvec4
+#define realMat4 dmat4
+const real kEps = 1e-9LF;  // castRay's slack on interval ends, in ray-parameter units
+const real kBig = 1e300LF;  // stands for castRay's infinity (only compared, never added)
+#endif
+
+layout(local_size_x = LB_RAYCAST_GROUP, local_size_y = LB_RAYCAST_GROUP) in;
+layout(std430, binding = LB_RAYCAST_BINDING_HEIGHTS) readonly buffer Heights { float heights[]; };
+layout(std430, binding = LB_RAYCAST_BINDING_MIP) readonly buffer Mip { float mip[]; };
+layout(std430, binding = LB_RAYCAST_BINDING_NORMALS) readonly buffer Normals { uint normals[]; };
+layout(std430, binding = LB_RAYCAST_BINDING_RGBA) writeonly buffer Rgba { uint rgba[]; };
+layout(std430, binding = LB_RAYCAST_BINDING_DISTANCE) writeonly buffer Distance { float dist[]; };
+layout(std140, binding = LB_RAYCAST_BINDING_PARAMS) uniform Params {
+  realMat4 invViewProj;  // inverse(proj * view) in double on the host, as raycastImage computes it
+  real4 eye;             // xyz: cameraMatrices().eye
+  real4 cell;            // x, z: cell width and depth; y: unused
+  vec4 light;            // xyz: the renderer's light direction, normalised on the host; w: extent
+  vec4 slopeBlend;       // x, y: smoothstep's edges (0.15, 0.35), subtracted here as the CPU does
+  ivec4 size;            // image width, height; heightfield width, height
+  ivec4 grid;            // cells along x, z; pyramid levels; 1: write distances
+  uvec4 levels[LB_RAYCAST_MAX_LEVELS];  // per level: offset into mip[], width, height
+};
+
+// The ray of this pixel and castRay's reciprocals.
+real3 o, d;
+real invX, invZ;
+
+// Float division and square root correctly rounded, as the CPU's: through double where it exists
+// (double rounding of a quotient or root is exact for float), the device's own in float otherwise.
+#ifdef LB_RAYCAST_F32
+float divF(float a, float b) { return a / b; }
+float sqrtF(float a) { return sqrt(a); }
+#else
+float divF(float a, float b) {
+  precise float q = float(double(a) / double(b));
+  return q;
+}
+float sqrtF(float a) {
+  precise float r = float(sqrt(double(a)));
+  return r;
+}
+#endif
+
+// glm's matrix times vector: (m0 x + m1 y) + (m2 z + m3 w).
+real4 transform(realMat4 m, real4 v) {
+  precise real4 r = (m[0] * v.x + m[1] * v.y) + (m[2] * v.z + m[3] * v.w);
+  return r;
+}
+
+// castRay's slab: parameter interval of o + t d inside [lo, hi] along one axis; empty when x > y.
+real2 slab(real lo, real hi, real ro, real rd, real inv) {
+  if (rd == 0) return ro >= lo && ro <= hi ? real2(-kBig, kBig) : real2(kBig, -kBig);
+  precise real a = (lo - ro) * inv, b = (hi - ro) * inv;
+  return a < b ? real2(a, b) : real2(b, a);
+}
+
+// castRay's enter(): the ray's interval inside node (level, ix, iz) clipped to [0, 1]; false when it
+// misses the node or passes above the node's highest point.
+bool enterNode(int level, int ix, int iz, out real t0, out real t1) {
+  t0 = 0;
+  t1 = 0;
+  const uvec4 l = levels[level];
+  if (ix >= int(l.y) || iz >= int(l.z)) return false;
+  const int s = 1 << level;
+  const real2 x = slab(real(ix * s) * cell.x, real(min((ix + 1) * s, grid.x)) * cell.x, o.x, d.x, invX);
+  const real2 z = slab(real(iz * s) * cell.z, real(min((iz + 1) * s, grid.y)) * cell.z, o.z, d.z, invZ);
+  t0 = max(max(real(0), x.x), z.x);
+  t1 = min(min(real(1), x.y), z.y);
+  if (t0 > t1 + kEps) return false;
+  precise real yLow = min(o.y + t0 * d.y, o.y + t1 * d.y);
+  return yLow <= real(mip[l.x + uint(iz) * l.y + uint(ix)]);
+}
+
+// castRay's firstRoot: smallest root of A s^2 + B s + C in [lo, hi].
+bool firstRoot(real A, real B, real C, real lo, real hi, out real best) {
+  best = 0;
+  precise real r0 = 0, r1 = 0;
+  int n = 0;
+  if (A == 0) {
+    if (B != 0) r0 = -C / B, n = 1;
+  } else {
+    precise real disc = B * B - 4 * A * C;
+    if (disc < 0) return false;
+    precise real root = sqrt(disc);
+    precise real q = -0.5 * (B + (B < 0 ? -root : root));
+    if (q != 0) {
+      r0 = q / A;
+      r1 = C / q;
+      n = 2;
+    } else {
+      n = 1;  // B == 0 and disc == 0, so C == 0: the root 0
+    }
+  }
+  bool found = false;
+  for (int i = 0; i < n; ++i) {
+    real r = i == 0 ? r0 : r1;
+    if (r >= lo && r <= hi && (!found || r < best)) best = r, found = true;
+  }
+  return found;
+}
+
+// castRay's bilinear cell: H(u, v) = a + b u + c v + e u v, u and v linear in the ray parameter.
+bool hitCell(int ix, int iz, real t0, real t1, out real3 pos) {
+  pos = real3(0);
+  const real x0 = real(ix) * cell.x, z0 = real(iz) * cell.z;
+  const int i = iz * size.z + ix;
+  const real h00 = heights[i], h10 = heights[i + 1], h01 = heights[i + size.z], h11 = heights[i + size.z + 1];
+  precise real a = h00, b = h10 - h00, c = h01 - h00, e = h00 - h10 - h01 + h11;
+  precise real u0 = (o.x + t0 * d.x - x0) / cell.x, du = d.x / cell.x;
+  precise real v0 = (o.z + t0 * d.z - z0) / cell.z, dv = d.z / cell.z;
+  precise real y0 = o.y + t0 * d.y;
+  precise real C = y0 - (a + b * u0 + c * v0 + e * u0 * v0);
+  precise real B = d.y - (b * du + c * dv + e * (u0 * dv + v0 * du));
+  precise real A = -e * du * dv;
+  real s;
+  if (!firstRoot(A, B, C, -kEps, t1 - t0 + kEps, s)) return false;
+  precise real t = t0 + s;
+  if (!(t >= 0)) return false;
+  precise real3 p = o + t * d;
+  precise real U = u0 + du * s, V = v0 + dv * s;
+  p.y = a + b * U + c * V + e * U * V;  // the exact bilinear value, as castRay keeps depth honest
+  pos = p;
+  return true;
+}
+
+// castRay: the max-mipmap quadtree front to back. Level-0 cells are intersected as soon as their
+// parent is expanded, in the order castRay pops them, so only nodes of level >= 1 are stacked.
+bool castRay(out real3 pos) {
+  pos = real3(0);
+  uint stack[LB_RAYCAST_STACK];
+  int top = 0;
+  const int root = grid.z - 1;
+  real t0, t1;
+  if (!enterNode(root, 0, 0, t0, t1)) return false;  // outside the terrain's box or above it
+  if (root == 0) return hitCell(0, 0, t0, t1, pos);
+  stack[top++] = uint(root) << 28;
+  while (top > 0) {
+    const uint node = stack[--top];
+    const int level = int(node >> 28) - 1, px = int((node >> 14) & 0x3fffu), pz = int(node & 0x3fffu);
+    int kx[4], kz[4];
+    real k0[4], k1[4];
+    int k = 0;
+    for (int dz = 0; dz < 2; ++dz)
+      for (int dx = 0; dx < 2; ++dx)
+        if (enterNode(level, 2 * px + dx, 2 * pz + dz, t0, t1)) kx[k] = 2 * px + dx, kz[k] = 2 * pz + dz, k0[k] = t0, k1[k] = t1, ++k;
+    for (int i = 1; i < k; ++i)  // castRay's insertion sort: stable, ties keep the scan order
+      for (int j = i; j > 0 && k0[j] < k0[j - 1]; --j) {
+        int x = kx[j], z = kz[j];
+        real a = k0[j], b = k1[j];
+        kx[j] = kx[j - 1], kz[j] = kz[j - 1], k0[j] = k0[j - 1], k1[j] = k1[j - 1];
+        kx[j - 1] = x, kz[j - 1] = z, k0[j - 1] = a, k1[j - 1] = b;
+      }
+    if (level == 0) {
+      for (int i = 0; i < k; ++i)
+        if (hitCell(kx[i], kz[i], k0[i], k1[i], pos)) return true;
+    } else {
+      for (int i = k - 1; i >= 0; --i) stack[top++] = (uint(level) << 28) | (uint(kx[i]) << 14) | uint(kz[i]);
+    }
+  }
+  return false;
+}
+
+vec2 mixF(vec2 a, vec2 b, float w) {
+  precise vec2 r = a * (1.0 - w) + b * w;  // glm::mix
+  return r;
+}
+
+// sampleNormalMap (terrain/normal_map.cpp): the texels' gradients bilinearly filtered, normalised.
+vec3 mapNormal(float x, float z) {
+  const ivec2 n = size.zw;
+  precise vec2 t = clamp(vec2(divF(x, light.w), divF(z, light.w)), 0.0, 1.0) * vec2(n - 1);
+  const ivec2 i0 = min(ivec2(floor(t)), max(n - 2, ivec2(0)));
+  precise vec2 f = t - vec2(i0);
+  const ivec2 i1 = min(i0 + 1, n - 1);
+  const vec2 g00 = unpackHalf2x16(normals[i0.y * n.x + i0.x]), g10 = unpackHalf2x16(normals[i0.y * n.x + i1.x]);
+  const vec2 g01 = unpackHalf2x16(normals[i1.y * n.x + i0.x]), g11 = unpackHalf2x16(normals[i1.y * n.x + i1.x]);
+  precise vec2 s = mixF(mixF(g00, g10, f.x), mixF(g01, g11, f.x), f.y);
+  precise vec3 v = vec3(s.x, 1.0, s.y);
+  precise float len2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  precise vec3 unit = v * divF(1.0, sqrtF(len2));  // glm::normalize: v * (1 / sqrt(dot(v, v)))
+  return unit;
+}
+
+uint unorm8(float v) {
+  precise float x = clamp(v, 0.0, 1.0) * 255.0;
+#ifdef LB_RAYCAST_F32
+  return uint(floor(x + 0.5));
+#else
+  return uint(floor(double(x) + 0.5LF));  // std::lround: exact in double, no carry into 1.0
+#endif
+}
+
+// shadeTerrain (metrics/raycast_shade.cpp), terrain.frag's shaded colour, packed R, G, B, A.
+uint shade(float x, float z) {
+  const vec3 n = mapNormal(x, z);
+  precise float diffuse = max(n.x * light.x + n.y * light.y + n.z * light.z, 0.0);
+  precise float lit = 0.25 + 0.75 * diffuse;
+  precise float slope = 1.0 - n.y;
+  // From the uniforms: glslang would fold 0.35 - 0.15 in double, not in float as the CPU does.
+  precise float st = clamp(divF(slope - slopeBlend.x, slopeBlend.y - slopeBlend.x), 0.0, 1.0);
+  precise float blend = st * st * (3.0 - 2.0 * st);
+  precise vec3 base = vec3(0.36, 0.45, 0.25) * (1.0 - blend) + vec3(0.45, 0.40, 0.35) * blend;
+  precise vec3 c = base * lit;
+  return unorm8(c.r) | (unorm8(max(c.g, 0.02)) << 8) | (unorm8(c.b) << 16) | (255u << 24);
+}
+
+void main() {
+  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+  // pixelRay: the pixel centre in Vulkan NDC (y down), unprojected at depth 0 and 1.
+  precise real nx = (real(p.x) + 0.5) / real(size.x) * 2 - 1, ny = (real(p.y) + 0.5) / real(size.y) * 2 - 1;
+  precise real4 a = transform(invViewProj, real4(nx, ny, 0, 1)), b = transform(invViewProj, real4(nx, ny, 1, 1));
+  precise real3 origin = a.xyz / a.w, dir = b.xyz / b.w - origin;
+  o = origin;
+  d = dir;
+  precise real rx = d.x != 0 ? 1.0 / d.x : 0.0, rz = d.z != 0 ? 1.0 / d.z : 0.0;
+  invX = rx;
+  invZ = rz;
+  real3 pos;
+  const uint i = uint(p.y) * uint(size.x) + uint(p.x);
+  if (!castRay(pos)) {
+    rgba[i] = 0xffff00ffu;  // kClearRgba: magenta
+    if (grid.w != 0) dist[i] = -1.0;
+    return;
+  }
+  rgba[i] = shade(float(pos.x), float(pos.z));
+  if (grid.w != 0) {
+    precise real3 v = pos - eye.xyz;
+    precise real len = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);  // glm::length
+    dist[i] = float(len);
+  }
+}
