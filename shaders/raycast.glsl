@@ -142,6 +142,11 @@ bool hitCell(int ix, int iz, real t0, real t1, out real3 pos) {
   return true;
 }
 
+struct Node {  // a child that enterNode found, and its interval
+  int ix, iz;
+  real t0, t1;
+};
+
 // castRay: the max-mipmap quadtree front to back. Level-0 cells are intersected as soon as their
 // parent is expanded, in the order castRay pops them, so only nodes of level >= 1 are stacked.
 bool castRay(out real3 pos) {
@@ -156,24 +161,29 @@ bool castRay(out real3 pos) {
   while (top > 0) {
     const uint node = stack[--top];
     const int level = int(node >> 28) - 1, px = int((node >> 14) & 0x3fffu), pz = int(node & 0x3fffu);
-    int kx[4], kz[4];
-    real k0[4], k1[4];
+    Node kids[4];
     int k = 0;
     for (int dz = 0; dz < 2; ++dz)
       for (int dx = 0; dx < 2; ++dx)
-        if (enterNode(level, 2 * px + dx, 2 * pz + dz, t0, t1)) kx[k] = 2 * px + dx, kz[k] = 2 * pz + dz, k0[k] = t0, k1[k] = t1, ++k;
-    for (int i = 1; i < k; ++i)  // castRay's insertion sort: stable, ties keep the scan order
-      for (int j = i; j > 0 && k0[j] < k0[j - 1]; --j) {
-        int x = kx[j], z = kz[j];
-        real a = k0[j], b = k1[j];
-        kx[j] = kx[j - 1], kz[j] = kz[j - 1], k0[j] = k0[j - 1], k1[j] = k1[j - 1];
-        kx[j - 1] = x, kz[j - 1] = z, k0[j - 1] = a, k1[j - 1] = b;
-      }
+        if (enterNode(level, 2 * px + dx, 2 * pz + dz, t0, t1)) {
+          kids[k] = Node(2 * px + dx, 2 * pz + dz, t0, t1);
+          ++k;
+        }
+    // castRay's stable insertion sort, as ranks: a child goes after every child entering earlier
+    // and after an equal one scanned before it. (A swap-based sort here came out of glslang and Mesa 22.3's
+    // lavapipe with both children of a swap holding the same node, measured.)
+    int rank[4] = int[4](0, 0, 0, 0);
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j)
+        if (j < i ? kids[j].t0 <= kids[i].t0 : kids[j].t0 < kids[i].t0) ++rank[i];
     if (level == 0) {
-      for (int i = 0; i < k; ++i)
-        if (hitCell(kx[i], kz[i], k0[i], k1[i], pos)) return true;
+      for (int r = 0; r < k; ++r)
+        for (int i = 0; i < k; ++i)
+          if (rank[i] == r && hitCell(kids[i].ix, kids[i].iz, kids[i].t0, kids[i].t1, pos)) return true;
     } else {
-      for (int i = k - 1; i >= 0; --i) stack[top++] = (uint(level) << 28) | (uint(kx[i]) << 14) | uint(kz[i]);
+      for (int r = k - 1; r >= 0; --r)  // pushed back to front: the nearest child is popped first
+        for (int i = 0; i < k; ++i)
+          if (rank[i] == r) stack[top++] = (uint(level) << 28) | (uint(kids[i].ix) << 14) | uint(kids[i].iz);
     }
   }
   return false;
