@@ -35,6 +35,10 @@ layout(std140, binding = LB_RAYCAST_BINDING_PARAMS) uniform Params {
   real4 cell;            // x, z: cell width and depth; y: unused
   vec4 light;            // xyz: the renderer's light direction, normalised on the host; w: extent
   vec4 slopeBlend;       // x, y: smoothstep's edges (0.15, 0.35), subtracted here as the CPU does
+  // Float only: the ray as affine functions of the pixel's NDC (x, y), made in double on the host:
+  // origin = [0] + x [1] + y [2], direction = [3] + x [4] + y [5]. Unprojecting through a float
+  // inverse matrix instead loses about 1e-3 of the direction (near : far is 1 : 40000).
+  vec4 rays[6];
   ivec4 size;            // image width, height; heightfield width, height
   ivec4 grid;            // cells along x, z; pyramid levels; 1: write distances
   uvec4 levels[LB_RAYCAST_MAX_LEVELS];  // per level: offset into mip[], width, height
@@ -238,8 +242,13 @@ void main() {
   if (p.x >= size.x || p.y >= size.y) return;
   // pixelRay: the pixel centre in Vulkan NDC (y down), unprojected at depth 0 and 1.
   precise real nx = (real(p.x) + 0.5) / real(size.x) * 2 - 1, ny = (real(p.y) + 0.5) / real(size.y) * 2 - 1;
+#ifdef LB_RAYCAST_F32
+  precise vec3 origin = rays[0].xyz + nx * rays[1].xyz + ny * rays[2].xyz;
+  precise vec3 dir = rays[3].xyz + nx * rays[4].xyz + ny * rays[5].xyz;
+#else
   precise real4 a = transform(invViewProj, real4(nx, ny, 0, 1)), b = transform(invViewProj, real4(nx, ny, 1, 1));
   precise real3 origin = a.xyz / a.w, dir = b.xyz / b.w - origin;
+#endif
   o = origin;
   d = dir;
   precise real rx = d.x != 0 ? 1.0 / d.x : 0.0, rz = d.z != 0 ? 1.0 / d.z : 0.0;

@@ -28,12 +28,13 @@ struct Params {
   T cell[4];  // x: cell width, z: cell depth
   float light[4];
   float slopeBlend[4];
+  float rays[6][4];  // the float shader's ray: origin and direction, affine in the pixel's NDC
   int32_t size[4];
   int32_t grid[4];
   uint32_t levels[LB_RAYCAST_MAX_LEVELS][4];
 };
-static_assert(sizeof(Params<double>) == 256 + LB_RAYCAST_MAX_LEVELS * 16);
-static_assert(sizeof(Params<float>) == 160 + LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<double>) == 352 + LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<float>) == 256 + LB_RAYCAST_MAX_LEVELS * 16);
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
@@ -49,6 +50,20 @@ void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double 
   const glm::vec3 light = shadeLight();
   p.light[0] = light.x, p.light[1] = light.y, p.light[2] = light.z, p.light[3] = extent;
   p.slopeBlend[0] = kSlopeBlendLow, p.slopeBlend[1] = kSlopeBlendHigh;
+  // pixelRay's near and far points are affine in NDC (x, y): their values at (0, 0) and slopes.
+  auto unproject = [&](double x, double y, double z) {
+    const glm::dvec4 a = inv * glm::dvec4(x, y, z, 1);
+    return glm::dvec3(a) / a.w;
+  };
+  auto dir = [&](double x, double y) { return unproject(x, y, 1) - unproject(x, y, 0); };
+  const glm::dvec3 rays[6] = {unproject(0, 0, 0),
+                              unproject(1, 0, 0) - unproject(0, 0, 0),
+                              unproject(0, 1, 0) - unproject(0, 0, 0),
+                              dir(0, 0),
+                              dir(1, 0) - dir(0, 0),
+                              dir(0, 1) - dir(0, 0)};
+  for (int k = 0; k < 6; ++k)
+    for (int c = 0; c < 3; ++c) p.rays[k][c] = float(rays[k][c]);
   p.size[0] = width, p.size[1] = height, p.size[2] = samplesX, p.size[3] = samplesZ;
   std::memcpy(p.grid, grid, sizeof p.grid);
   std::memcpy(p.levels, levels.data(), levels.size() * sizeof(uint32_t));
@@ -141,8 +156,7 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
     writes[i].dstSet = bindings_.set;
     writes[i].dstBinding = slots[i];
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType =
-        i == 5 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].descriptorType = i == 5 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[i].pBufferInfo = &infos[i];
   }
   vkUpdateDescriptorSets(ctx_.device, 6, writes, 0, nullptr);
@@ -150,9 +164,8 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
   runOneShot(ctx_, [&](VkCommandBuffer cmd) {
     vkCmdResetQueryPool(cmd, timestamps_, 0, 2);
     // Earlier work on the caller's buffers (or their last read) ends before the shader writes them.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 0);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings_.pipelineLayout, 0, 1, &bindings_.set, 0,

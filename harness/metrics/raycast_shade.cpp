@@ -31,8 +31,8 @@ std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, floa
   float diffuse = std::max(glm::dot(n, light), 0.0f);
   float shade = 0.25f + 0.75f * diffuse;
   float slope = 1.0f - n.y;
-  glm::vec3 base =
-      glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f), smoothstep(kSlopeBlendLow, kSlopeBlendHigh, slope));
+  glm::vec3 base = glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f),
+                            smoothstep(kSlopeBlendLow, kSlopeBlendHigh, slope));
   glm::vec3 c = base * shade;
   return {unorm8(c.r), unorm8(std::max(c.g, 0.02f)), unorm8(c.b), 255};
 }
