@@ -146,13 +146,10 @@ bool hitCell(int ix, int iz, real t0, real t1, out real3 pos) {
   return true;
 }
 
-struct Node {  // a child that enterNode found, and its interval
-  int ix, iz;
-  real t0, t1;
-};
-
 // castRay: the max-mipmap quadtree front to back. Level-0 cells are intersected as soon as their
 // parent is expanded, in the order castRay pops them, so only nodes of level >= 1 are stacked.
+// The four children keep fixed slots (scan order, child c at dx = c & 1, dz = c >> 1) and every
+// loop over them has a constant bound, so they stay in registers rather than local memory.
 bool castRay(out real3 pos) {
   pos = real3(0);
   uint stack[LB_RAYCAST_STACK];
@@ -164,30 +161,38 @@ bool castRay(out real3 pos) {
   stack[top++] = uint(root) << 28;
   while (top > 0) {
     const uint node = stack[--top];
-    const int level = int(node >> 28) - 1, px = int((node >> 14) & 0x3fffu), pz = int(node & 0x3fffu);
-    Node kids[4];
-    int k = 0;
-    for (int dz = 0; dz < 2; ++dz)
-      for (int dx = 0; dx < 2; ++dx)
-        if (enterNode(level, 2 * px + dx, 2 * pz + dz, t0, t1)) {
-          kids[k] = Node(2 * px + dx, 2 * pz + dz, t0, t1);
-          ++k;
-        }
-    // castRay's stable insertion sort, as ranks: a child goes after every child entering earlier
-    // and after an equal one scanned before it. (A swap-based sort here came out of glslang and Mesa 22.3's
-    // lavapipe with both children of a swap holding the same node, measured.)
-    int rank[4] = int[4](0, 0, 0, 0);
-    for (int i = 0; i < k; ++i)
-      for (int j = 0; j < k; ++j)
-        if (j < i ? kids[j].t0 <= kids[i].t0 : kids[j].t0 < kids[i].t0) ++rank[i];
-    if (level == 0) {
-      for (int r = 0; r < k; ++r)
-        for (int i = 0; i < k; ++i)
-          if (rank[i] == r && hitCell(kids[i].ix, kids[i].iz, kids[i].t0, kids[i].t1, pos)) return true;
-    } else {
-      for (int r = k - 1; r >= 0; --r)  // pushed back to front: the nearest child is popped first
-        for (int i = 0; i < k; ++i)
-          if (rank[i] == r) stack[top++] = (uint(level) << 28) | (uint(kids[i].ix) << 14) | uint(kids[i].iz);
+    const int level = int(node >> 28) - 1, x0 = 2 * int((node >> 14) & 0x3fffu), z0 = 2 * int(node & 0x3fffu);
+    bool entered[4];
+    real c0[4], c1[4];
+    int count = 0;
+    for (int c = 0; c < 4; ++c) {
+      entered[c] = enterNode(level, x0 + (c & 1), z0 + (c >> 1), c0[c], c1[c]);
+      count += entered[c] ? 1 : 0;
+    }
+    // castRay's stable insertion sort as ranks: a child goes after every child entering earlier and
+    // after an equal one scanned before it. (A swap-based sort here came out of glslang and Mesa
+    // 22.3's lavapipe with both children of a swap holding the same node, measured.)
+    int rank[4];
+    for (int i = 0; i < 4; ++i) {
+      rank[i] = 0;
+      for (int j = 0; j < 4; ++j)
+        if (entered[j] && (j < i ? c0[j] <= c0[i] : c0[j] < c0[i])) ++rank[i];
+    }
+    if (level > 0) {
+      for (int c = 0; c < 4; ++c)  // back to front: the nearest child on top
+        if (entered[c])
+          stack[top + count - 1 - rank[c]] = (uint(level) << 28) | (uint(x0 + (c & 1)) << 14) | uint(z0 + (c >> 1));
+      top += count;
+      continue;
+    }
+    for (int r = 0; r < count; ++r) {
+      int pick = 0;
+      for (int c = 0; c < 4; ++c)
+        if (entered[c] && rank[c] == r) pick = c;
+      real a = c0[0], b = c1[0];
+      for (int c = 1; c < 4; ++c)
+        if (pick == c) a = c0[c], b = c1[c];
+      if (hitCell(x0 + (pick & 1), z0 + (pick >> 1), a, b, pos)) return true;
     }
   }
   return false;
