@@ -7,9 +7,11 @@
 #include <string>
 
 #include "dem_crop.h"
+#include "error.h"
 #include "gpu_fixture.h"
 #include "metrics/gpu_raycast.h"
 #include "metrics/raycast.h"
+#include "shaders/raycast_params.h"
 #include "terrain/generators.h"
 
 using namespace lb;
@@ -223,5 +225,20 @@ TEST_F(GpuRaycastTest, FloatFallbackStaysNearTheOracle) {
     EXPECT_LE(all.worstChannel, 1);
     EXPECT_LE(all.distance, all.cpuHits / 10);
     EXPECT_LT(all.worstRelative, 1e-3);
+  }
+}
+
+// The shader's stack packs a node's column in 14 bits: a wider terrain is refused with its size
+// named (FeatureMissing: the case is recorded as skipped with the reason), never cast wrong.
+TEST_F(GpuRaycastTest, TerrainBeyondTheShaderLimitIsRefused) {
+  Heightfield hf;
+  hf.width = LB_RAYCAST_MAX_CELLS + 2;  // one cell too many
+  hf.height = 2;
+  hf.h.assign(size_t(hf.width) * size_t(hf.height), 0.0f);
+  try {
+    GpuRaycast gpu(lbtest::gpu(), hf);
+    ADD_FAILURE() << "no error for " << hf.width << " samples a row";
+  } catch (const FeatureMissing& e) {
+    EXPECT_NE(std::string(e.what()).find("32770 x 2 samples"), std::string::npos) << e.what();
   }
 }
