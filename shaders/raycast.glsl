@@ -36,8 +36,9 @@ layout(std140, binding = LB_RAYCAST_BINDING_PARAMS) uniform Params {
   vec4 light;            // xyz: the renderer's light direction, normalised on the host; w: extent
   vec4 slopeBlend;       // x, y: smoothstep's edges (0.15, 0.35), subtracted here as the CPU does
   // Float only: the ray as affine functions of the pixel's NDC (x, y), made in double on the host:
-  // origin = [0] + x [1] + y [2], direction = [3] + x [4] + y [5]. Unprojecting through a float
-  // inverse matrix instead loses about 1e-3 of the direction (near : far is 1 : 40000).
+  // origin = [0] + x [1] + y [2], direction = [3] + x [4] + y [5]. Unprojected through a float
+  // inverse matrix instead (near : far is 1 : 40000), 92% of the test frames' distances were off
+  // by more than 1e-5 and some rays hit another crest (measured on lavapipe).
   vec4 rays[6];
   ivec4 size;            // image width, height; heightfield width, height
   ivec4 grid;            // cells along x, z; pyramid levels; 1: write distances
