@@ -21,15 +21,18 @@ uint8_t unorm8(float v) {
 
 }  // namespace
 
+glm::vec3 shadeLight() {
+  return glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f));  // Renderer::fillUniforms (harness/render/renderer.cpp)
+}
+
 std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, float x, float z) {
   glm::vec3 n = sampleNormalMap(normals, extent, x, z);  // terrain.frag mapNormal()
-  // The light of Renderer::fillUniforms (harness/render/renderer.cpp).
-  static const glm::vec3 light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f));
+  static const glm::vec3 light = shadeLight();
   float diffuse = std::max(glm::dot(n, light), 0.0f);
   float shade = 0.25f + 0.75f * diffuse;
   float slope = 1.0f - n.y;
-  glm::vec3 base =
-      glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f), smoothstep(0.15f, 0.35f, slope));
+  glm::vec3 base = glm::mix(glm::vec3(0.36f, 0.45f, 0.25f), glm::vec3(0.45f, 0.40f, 0.35f),
+                            smoothstep(kSlopeBlendLow, kSlopeBlendHigh, slope));
   glm::vec3 c = base * shade;
   return {unorm8(c.r), unorm8(std::max(c.g, 0.02f)), unorm8(c.b), 255};
 }

@@ -256,10 +256,12 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.enabledFeatures.fillModeNonSolid = have.fillModeNonSolid;                              // wireframe images only
   ctx.enabledFeatures.vertexPipelineStoresAndAtomics = have.vertexPipelineStoresAndAtomics;  // factor capture
   ctx.enabledFeatures.geometryShader = have.geometryShader;                                  // measurement passes only
-  ctx.enabledFeatures.shaderFloat64 = have.shaderFloat64;  // GPU SSIM in double (metrics/gpu_reduce.h)
   // GPU-indirect schemes that split their draw (cbt-ts): a count and first instances from the GPU.
   ctx.enabledFeatures.multiDrawIndirect = have.multiDrawIndirect;
   ctx.enabledFeatures.drawIndirectFirstInstance = have.drawIndirectFirstInstance;
+  // The GPU ray-cast truth intersects in double where it can, as its CPU oracle does
+  // (metrics/gpu_raycast.h), and GPU SSIM sums in double (metrics/gpu_reduce.h).
+  ctx.enabledFeatures.shaderFloat64 = have.shaderFloat64;
   VkPhysicalDeviceVulkan12Features have12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 have2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &have12};
   vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &have2);
@@ -269,6 +271,7 @@ void createContext(Context& ctx, const ContextOptions& options) {
     std::string list = off;
     if (list.find("geometryShader") != std::string::npos) ctx.enabledFeatures.geometryShader = VK_FALSE;
     if (list.find("fillModeNonSolid") != std::string::npos) ctx.enabledFeatures.fillModeNonSolid = VK_FALSE;
+    if (list.find("shaderFloat64") != std::string::npos) ctx.enabledFeatures.shaderFloat64 = VK_FALSE;
   }
 
   ctx.queueFamily = uint32_t(graphicsQueueFamily(ctx.physicalDevice));

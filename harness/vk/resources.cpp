@@ -176,7 +176,7 @@ Bindings createBindings(Context& ctx, const std::vector<DescriptorBinding>& bind
   VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pli.setLayoutCount = 1;
   pli.pSetLayouts = &setLayout;
-  pli.pushConstantRangeCount = 1;
+  pli.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;  // a pass with no push constants has no range
   pli.pPushConstantRanges = &pc;
   VkPipelineLayout layout;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pli, nullptr, &layout));

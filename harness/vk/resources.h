@@ -46,7 +46,7 @@ vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter);
 vk::Unique<VkCommandPool> createCommandPool(Context& ctx, VkCommandBuffer* buffers, uint32_t count);
 vk::Unique<VkFence> createFence(Context& ctx);
 // A descriptor set layout, a pool holding one set of it, that set and a pipeline layout with one
-// push-constant range: what the renderer, the probe and a compute pass each bind.
+// push-constant range (none when pushBytes is 0): what the renderer, the probe and a compute pass each bind.
 struct DescriptorBinding {
   uint32_t binding;
   VkDescriptorType type;

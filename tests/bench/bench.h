@@ -1,6 +1,7 @@
 #pragma once
-// Microbenchmarks of lodbench's CPU-side work (Google Benchmark). bench_main.cpp registers every
-// function below from one table, and BM_SchemeUpdate once per entry of the scheme registry.
+// Microbenchmarks of lodbench's CPU-side work and of the GPU ray cast (Google Benchmark).
+// bench_main.cpp registers every function below from one table, and BM_SchemeUpdate once per
+// entry of the scheme registry.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -27,5 +28,9 @@ void benchCpuReduce(benchmark::State& state, int width, int height);
 void benchWriteCase(benchmark::State& state, int frames);  // caseJson + writeFileAtomic
 void benchMannWhitney(benchmark::State& state, int n);     // lodbench compare's test, n per side
 void benchBootstrap(benchmark::State& state, int n);       // its ratio interval, n per side
+// GpuRaycast::run at width x height over the DEM crop (its own Vulkan context; bench_gpu.cpp), and
+// its CPU oracle raycastImage on every hardware thread, on the same frame.
+void benchGpuRaycast(benchmark::State& state, int width, int height);
+void benchCpuRaycast(benchmark::State& state, int width, int height);
 
 }  // namespace lb

@@ -38,6 +38,8 @@ std::vector<Entry> table() {
       {"BM_GpuReduce1080p", [](auto& s) { benchGpuReduce(s, 1920, 1080); }},
       {"BM_CpuReduce1080p", [](auto& s) { benchCpuReduce(s, 1920, 1080); }},
       {"BM_WriteCase/300", [](auto& s) { benchWriteCase(s, 300); }},
+      {"BM_GpuRaycast1080p", [](auto& s) { benchGpuRaycast(s, 1920, 1080); }},
+      {"BM_CpuRaycast1080p", [](auto& s) { benchCpuRaycast(s, 1920, 1080); }},
   };
   // Every scheme in the registry: a new scheme gets its benchmark without an edit here.
   for (const Scheme* scheme : allSchemes())
