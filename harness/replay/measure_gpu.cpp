@@ -15,10 +15,9 @@ bool measureOnGpu(const MeasureSpec& spec, const Context& ctx) {
 }
 
 static Buffer frameBuffer(Context& ctx, int width, int height) {
-  return createBuffer(ctx, VkDeviceSize(width) * VkDeviceSize(height) * 4,
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                      false);
+  return createBuffer(
+      ctx, VkDeviceSize(width) * VkDeviceSize(height) * 4,
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
 }
 
 MeasureGpu::MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int height)

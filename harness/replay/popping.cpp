@@ -6,8 +6,7 @@
 
 namespace lb {
 
-PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current,
-                         MeasureGpu* gpu) {
+PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current, MeasureGpu* gpu) {
   struct RestoreCulling {  // also when a render throws
     Renderer& r;
     Renderer::CullCamera saved;

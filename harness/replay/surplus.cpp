@@ -25,8 +25,7 @@ double errorP95(const std::vector<float>& errorMap) {
 }
 
 SurplusResult SurplusMatcher::match(Context& ctx, const Heightfield& terrain, const RenderSettings& settings,
-                                    const CameraPose& pose, double target, uint64_t schemeTriangles,
-                                    MeasureGpu* gpu) {
+                                    const CameraPose& pose, double target, uint64_t schemeTriangles, MeasureGpu* gpu) {
   const Scheme* bounded = schemeWithRole(MainParamRole::ErrorBoundPx);
   if (!bounded) throw std::logic_error("surplus: no registered scheme has an error-bound main parameter");
   const SchemeInfo& info = bounded->info();
