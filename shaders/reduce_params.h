@@ -17,8 +17,8 @@
 #define LB_RED_EXTRA 7    // terrain in a, clear in b
 #define LB_RED_CANDIDATES 8
 #define LB_RED_ERR_COUNT 9
-#define LB_RED_ERR_MAX 10     // largest value's bits (non-negative floats order as their bits)
-#define LB_RED_ERR_SELECT 11  // 3 words: the coarse bins holding the ranks around the p95
+#define LB_RED_ERR_MAX 10        // largest value's bits (non-negative floats order as their bits)
+#define LB_RED_ERR_SELECT 11     // 3 words: the coarse bins holding the ranks around the p95
 #define LB_RED_TRUTH_TERRAIN 14  // terrain in b
 #define LB_RED_HEADER 16
 #define LB_RED_DIFF_HIST 16     // 256 bins of the largest channel difference (bin 0 left empty)
