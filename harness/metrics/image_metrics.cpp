@@ -124,37 +124,43 @@ long crackPixels(const RgbaImage& img, const RgbaImage& reference, std::vector<u
     }
     return before && after;
   };
-  // Clear pixels of img connected to the background (clear in both images, or on the image
-  // border, past which the background may continue off-screen): silhouette gaps, not holes.
-  std::vector<uint8_t> background(size_t(w) * size_t(h), 0);
-  std::vector<int> stack;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (isClear(img, x, y) && (isClear(reference, x, y) || x == 0 || y == 0 || x == w - 1 || y == h - 1)) {
-        background[size_t(y) * size_t(w) + size_t(x)] = 1;
-        stack.push_back(y * w + x);
-      }
-  while (!stack.empty()) {
-    int p = stack.back();
-    stack.pop_back();
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        int x = p % w + dx, y = p / w + dy;
-        if (x < 0 || y < 0 || x >= w || y >= h || !isClear(img, x, y)) continue;
-        uint8_t& b = background[size_t(y) * size_t(w) + size_t(x)];
-        if (b) continue;
-        b = 1;
-        stack.push_back(y * w + x);
-      }
-  }
+  // A candidate is a crack unless its clear region of img (8-connected) reaches the background: a
+  // pixel clear in both images, or on the image border, past which the background may continue
+  // off-screen (a silhouette gap, not a hole). Only the regions holding candidates are searched, and
+  // a search stops at the first background pixel, so the sky's region is never walked whole.
+  enum : uint8_t { kUnknown = 0, kBackground = 1, kHole = 2, kQueued = 3 };
+  std::vector<uint8_t> region(size_t(w) * size_t(h), kUnknown);
+  std::vector<int> queue;
+  auto resolve = [&](int start) {
+    queue.assign(1, start);
+    region[size_t(start)] = kQueued;
+    bool background = false;
+    for (size_t q = 0; q < queue.size() && !background; ++q) {
+      int p = queue[q], px = p % w, py = p / w;
+      if (isClear(reference, px, py) || px == 0 || py == 0 || px == w - 1 || py == h - 1) background = true;
+      for (int dy = -1; dy <= 1 && !background; ++dy)
+        for (int dx = -1; dx <= 1 && !background; ++dx) {
+          int x = px + dx, y = py + dy;
+          if (x < 0 || y < 0 || x >= w || y >= h || !isClear(img, x, y)) continue;
+          uint8_t& r = region[size_t(y) * size_t(w) + size_t(x)];
+          if (r == kBackground) background = true;
+          if (r != kUnknown) continue;
+          r = kQueued;
+          queue.push_back(y * w + x);
+        }
+    }
+    for (int p : queue) region[size_t(p)] = background ? kBackground : kHole;
+  };
   long count = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       if (!isClear(img, x, y) || isClear(reference, x, y)) continue;
-      if (background[size_t(y) * size_t(w) + size_t(x)]) continue;
       if (!enclosed(x, y, 1, 0) && !enclosed(x, y, 0, 1)) continue;
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      if (region[i] == kUnknown) resolve(y * w + x);
+      if (region[i] != kHole) continue;
       ++count;
-      if (mask) (*mask)[size_t(y) * size_t(w) + size_t(x)] = 1;
+      if (mask) (*mask)[i] = 1;
     }
   return count;
 }

@@ -7,6 +7,7 @@
 #include "config/config.h"
 #include "render/renderer.h"
 #include "replay/lod_replay.h"
+#include "replay/measure_gpu.h"
 #include "stats.h"
 
 namespace lb {
@@ -23,6 +24,14 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   Renderer r(ctx, terrain, {c.width, c.height, c.grid});
+  // On the GPU path (replay/measure_gpu.h) each trial's error map is reduced on the device.
+  std::unique_ptr<GpuReduce> reduce;
+  Buffer errorMap;
+  if (spec.metric != "triangles" && measureOnGpu(config.measure, ctx)) {
+    reduce = std::make_unique<GpuReduce>(ctx, c.width, c.height);
+    errorMap = createBuffer(ctx, VkDeviceSize(c.width) * VkDeviceSize(c.height) * 4,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+  }
 
   auto poseAt = [&](int f) { return samplePose(path, config.fps, f, terrain); };
   auto evaluate = [&](double v) {
@@ -52,6 +61,10 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
         r.submitFrame(f, p, p);
         r.finish();
         sum += double(r.takeCompleted().back().stats.clipInvocations);
+      } else if (reduce) {
+        r.renderInto(p, p, RenderMode::Error, &errorMap);
+        GpuErrorStats es = reduce->errorStats(errorMap);
+        sum += es.count == 0 ? 0 : spec.metric == "err_p95_px" ? es.p95 : es.mean;
       } else if (spec.metric == "err_p95_px") {
         std::vector<double> e;
         for (float v : r.renderErrorMap(p, p))

@@ -63,7 +63,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   auto last = std::chrono::steady_clock::now();
   auto lap = [&](const char* pass) {  // a pass that did not run (off) is not charged
     auto now = std::chrono::steady_clock::now();
-    if (spec.on(pass) || pass == std::string("render") || pass == std::string("ray_cast"))
+    const std::string p = pass;
+    if (spec.on(p) || p == "render" || p == "ray_cast" || (p == "setup" && now - last > std::chrono::microseconds(100)))
       m.costs[pass] += std::chrono::duration<double>(now - last).count();
     last = now;
   };
@@ -71,6 +72,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   const RenderSettings& rs = r.settings();
   // On the GPU path (replay/measure_gpu.h) frames stay in device buffers and only numbers come back.
   MeasureGpu* g = measureOnGpu(spec, ctx) ? &refs.gpu(ctx, terrain, terrainKey, rs.width, rs.height) : nullptr;
+  lap("setup");  // once per terrain and resolution: the GPU path's buffers, pyramid and pipelines
   // Live frame with factor capture: the basis for image metrics, cracks and saturation.
   FrameResult live;
   if (g)
