@@ -7,9 +7,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 
+#include "config/config.h"
 #include "config/measure_spec.h"
 #include "dem_crop.h"
 #include "gpu_fixture.h"
@@ -17,6 +20,8 @@
 #include "replay/measure.h"
 #include "replay/measure_gpu.h"
 #include "replay/raycast_cache.h"
+#include "results/run_dir.h"
+#include "sweep/runner.h"
 #include "terrain/heightfield.h"
 
 using namespace lb;
@@ -167,4 +172,39 @@ TEST_F(MeasureGpuTest, CrackCandidatesSendAFrameToTheFloodFill) {
   const GpuImageStats before = g.reduce.compare(g.shaded, g.truth, 16, false);
   EXPECT_EQ(s.crackCandidates, before.crackCandidates + 3);
   EXPECT_EQ(crackPixels(holed, g.readImage(g.truth)), 3);
+}
+
+// run.json and every case record say where a measured frame's time went, pass by pass: the passes
+// that ran and no other, each frame counted, the parts summing to the whole; the GPU path's one-off
+// set-up is its own entry, charged once.
+TEST_F(MeasureGpuTest, RunAndCaseRecordsCarryTheCostOfEachPass) {
+  namespace fs = std::filesystem;
+  for (const char* compute : {"cpu", "gpu"}) {
+    const fs::path run = fs::path(::testing::TempDir()) / "lodbench_measure_costs" / compute;
+    fs::remove_all(run);
+    const Config config =
+        parseConfig(std::string(R"({"name": "costs", "resolution": [48, 32], "grid": 4, "fps": 10, "warmup_frames": 0,
+                        "max_frames": 3, "terrain": {"type": "procedural", "size": 33, "seed": 5},
+                        "paths": ["paths/flyover.csv"], "schemes": ["sphere"],
+                        "measure": {"every": 1, "passes": ["error", "image", "popping"], "compute": ")") +
+                        compute + R"("}})",
+                    "costs.json", std::string(LODBENCH_SOURCE_DIR) + "/configs");
+    RunOptions options{run.string(), false, false};
+    ASSERT_EQ(runSweep(config, options).ok, 1) << compute;
+    const nlohmann::json rj = readJsonFile((run / "run.json").string())["measure_costs_ms"];
+    EXPECT_EQ(rj["frames"], 3) << compute;
+    std::set<std::string> passes;
+    double sum = 0;
+    for (auto& [pass, ms] : rj["passes"].items()) {
+      passes.insert(pass);
+      EXPECT_GE(ms.get<double>(), 0.0) << pass;
+      sum += ms.get<double>();
+    }
+    std::set<std::string> ran = {"render", "error", "ray_cast", "image", "popping"};
+    if (std::string(compute) == "gpu") ran.insert("setup");
+    EXPECT_EQ(passes, ran) << compute << ": " << rj.dump();
+    EXPECT_NEAR(rj["measured_frame"].get<double>(), sum, 1e-9 * sum);
+    const nlohmann::json cj = readCaseFiles(run.string()).at(0).doc["measure_costs_ms"];
+    EXPECT_EQ(cj, rj) << "one case: its record's costs are the run's";
+  }
 }
