@@ -166,7 +166,8 @@ static int renderCmd(const RenderArgs& a) {
       spec.passes = {"error", "cracks"};
       ReferenceCache refs;
       FrameMetrics m =
-          measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame, pose, pose);
+          measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, "cli", spec, refs, a.frame, pose, pose,
+                       nullptr, /*keepPixels=*/true);  // the error map itself, on either measurement path
       px = a.error ? errorImage(m.errorMap, a.width, a.height).px
                    : crackMaskImage({a.width, a.height, px}, m.crackMask).px;  // over the sky-shaded frame
       for (auto& [k, v] : m.values) std::printf("%s = %g\n", k.c_str(), v);
