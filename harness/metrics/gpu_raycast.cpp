@@ -72,7 +72,7 @@ void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double 
 
 }  // namespace
 
-GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOptions& options) : ctx_(ctx) {
+GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOptions& options) : ctx_(ctx), timer_(ctx) {
   double_ = options.allowDouble && ctx.enabledFeatures.shaderFloat64;
   MaxMipmap mip = buildMaxMipmap(hf);  // the CPU oracle's pyramid, so both skip the same nodes
   for (int k = 0; k < options.testDropLevels && mip.levels.size() > 1; ++k) mip.levels.pop_back();
@@ -114,18 +114,6 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
                               {LB_RAYCAST_BINDING_PARAMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs}},
                              cs, 0);
   pipeline_ = createComputePipeline(ctx, bindings_.pipelineLayout, double_ ? "raycast" : "raycast_f32");
-
-  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = 2;
-  VkQueryPool pool;
-  VK_CHECK(vkCreateQueryPool(ctx.device, &qi, nullptr, &pool));
-  timestamps_ = vk::Unique(ctx.device, pool);
-  uint32_t n = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, nullptr);
-  std::vector<VkQueueFamilyProperties> families(n);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, families.data());
-  if (ctx.queueFamily < n) timestampMask_ = timestampMaskFromValidBits(families[ctx.queueFamily].timestampValidBits);
 }
 
 void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer& rgba, const Buffer* distance) {
@@ -162,26 +150,22 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
   vkUpdateDescriptorSets(ctx_.device, 6, writes, 0, nullptr);
 
   runOneShot(ctx_, [&](VkCommandBuffer cmd) {
-    vkCmdResetQueryPool(cmd, timestamps_, 0, 2);
     // Earlier work on the caller's buffers (or their last read) ends before the shader writes them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 0);
+    timer_.begin(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings_.pipelineLayout, 0, 1, &bindings_.set, 0,
                             nullptr);
     vkCmdDispatch(cmd, uint32_t((width + LB_RAYCAST_GROUP - 1) / LB_RAYCAST_GROUP),
                   uint32_t((height + LB_RAYCAST_GROUP - 1) / LB_RAYCAST_GROUP), 1);
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 1);
+    timer_.end(cmd);
     // The caller reads the results on the device (any stage) or, from host-visible buffers, on the host.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT);
   });
-  uint64_t ts[2];
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ts, ts, sizeof(uint64_t),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  lastGpuMs_ = double((ts[1] - ts[0]) & timestampMask_) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
+  lastGpuMs_ = timer_.ms();
 }
 
 RgbaImage GpuRaycast::image(const CameraPose& pose, int width, int height, std::vector<float>* distance) {

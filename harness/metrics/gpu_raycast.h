@@ -11,6 +11,7 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
+#include "render/gpu_profiler.h"
 #include "vk/resources.h"
 
 namespace lb {
@@ -48,8 +49,7 @@ class GpuRaycast {
   Buffer heights_, mip_, normals_, params_, unusedDistance_;
   Bindings bindings_;
   vk::Unique<VkPipeline> pipeline_;
-  vk::Unique<VkQueryPool> timestamps_;
-  uint64_t timestampMask_ = ~0ull;  // the queue's valid timestamp bits: wrap-around is masked with them
+  PassTimer timer_;
   double lastGpuMs_ = 0;
 };
 

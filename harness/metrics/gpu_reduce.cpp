@@ -34,7 +34,11 @@ struct Weights {  // std430 of reduce_ssim.glsl's Weights block
 }  // namespace
 
 GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
-    : ctx_(ctx), width_(width), height_(height), float64_(allowFloat64 && ctx.enabledFeatures.shaderFloat64) {
+    : ctx_(ctx),
+      width_(width),
+      height_(height),
+      float64_(allowFloat64 && ctx.enabledFeatures.shaderFloat64),
+      timer_(ctx) {
   const uint64_t n = uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
   // The p95 pass ranks values with 95 (n - 1) in 32 bits (reduce_error_select.comp).
   if (width <= 0 || height <= 0 || n * 95 >= (uint64_t(1) << 32))
@@ -82,18 +86,6 @@ GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
   select_ = createComputePipeline(ctx, bindings_.pipelineLayout, "reduce_error_select");
   fine_ = createComputePipeline(ctx, bindings_.pipelineLayout, "reduce_error_fine");
 
-  uint32_t families = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &families, nullptr);
-  std::vector<VkQueueFamilyProperties> props(families);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &families, props.data());
-  if (ctx.queueFamily < families)
-    timestampMask_ = timestampMaskFromValidBits(props[ctx.queueFamily].timestampValidBits);
-  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = 2;
-  VkQueryPool pool;
-  VK_CHECK(vkCreateQueryPool(ctx.device, &qi, nullptr, &pool));
-  timestamps_ = vk::Unique(ctx.device, pool);
   fence_ = createFence(ctx);
   pool_ = createCommandPool(ctx, &cmd_, 1);
 }
@@ -137,11 +129,7 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd_, &bi));
-  const bool timed = timestampMask_ != 0;  // a queue without timestamp bits must write none
-  if (timed) {
-    vkCmdResetQueryPool(cmd_, timestamps_, 0, 2);
-    vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
-  }
+  timer_.begin(cmd_);
   // The inputs were written by earlier submissions (renders, uploads); the words need clearing.
   memoryBarrier(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
@@ -160,7 +148,7 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
   vkCmdCopyBuffer(cmd_, result_.buffer, readback_.buffer, partialWords > 0 ? 2 : 1, regions);
   memoryBarrier(cmd_, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  if (timed) vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 1);
+  timer_.end(cmd_);
   VK_CHECK(vkEndCommandBuffer(cmd_));
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
@@ -172,11 +160,7 @@ void GpuReduce::run(uint32_t partialWords, const std::function<void(VkCommandBuf
     vkQueueWaitIdle(ctx_.queue);  // the work must end before its buffers can go
     throw;
   }
-  uint64_t ts[2] = {};
-  lastGpuMs_ = kNan;
-  if (timed && vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ts, ts, sizeof ts[0],
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
-    lastGpuMs_ = double((ts[1] - ts[0]) & timestampMask_) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
+  lastGpuMs_ = timer_.ms();
   words_.resize(LB_RED_PARTIALS + partialWords);
   std::memcpy(words_.data(), readback_.mapped, words_.size() * 4);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "metrics/image_metrics.h"
+#include "render/gpu_profiler.h"
 #include "vk/resources.h"
 
 namespace lb {
@@ -63,12 +64,11 @@ class GpuReduce {  // one per Context and resolution; holds pipelines and small 
   int width_, height_;
   bool float64_ = false;
   double lastGpuMs_ = 0;
-  uint64_t timestampMask_ = 0;
   uint32_t imageGroups_ = 0, errorGroups_ = 0, ssimGroupsX_ = 0, ssimGroupsY_ = 0;
   Bindings bindings_;
   vk::Unique<VkPipeline> image_, ssim_, error_, select_, fine_;
   Buffer result_, readback_, weights_;
-  vk::Unique<VkQueryPool> timestamps_;
+  PassTimer timer_;
   vk::Unique<VkFence> fence_;
   vk::Unique<VkCommandPool> pool_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;  // released with pool_

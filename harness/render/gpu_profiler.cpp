@@ -1,6 +1,7 @@
 // Query pools of the frame ring: three timestamps (top, LOD done, bottom) and one statistics query per slot.
 #include "render/gpu_profiler.h"
 
+#include <cmath>
 #include <vector>
 
 #include "vk/context.h"
@@ -17,13 +18,43 @@ uint64_t timestampMaskFromValidBits(uint32_t validBits) {
   return validBits >= 64 ? ~0ull : (1ull << validBits) - 1;
 }
 
-GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx), lodWritten_(size_t(slots), false) {
-  // The queue family says how many timestamp bits are valid; wrap-around is masked with them.
+uint64_t queueTimestampMask(const Context& ctx) {
   uint32_t n = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, nullptr);
   std::vector<VkQueueFamilyProperties> families(n);
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &n, families.data());
-  if (ctx.queueFamily < n) mask_ = timestampMaskFromValidBits(families[ctx.queueFamily].timestampValidBits);
+  return ctx.queueFamily < n ? timestampMaskFromValidBits(families[ctx.queueFamily].timestampValidBits) : 0;
+}
+
+PassTimer::PassTimer(Context& ctx) : ctx_(ctx), mask_(queueTimestampMask(ctx)) {
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = 2;
+  VkQueryPool pool;
+  VK_CHECK(vkCreateQueryPool(ctx.device, &qi, nullptr, &pool));
+  pool_ = vk::Unique(ctx.device, pool);
+}
+
+void PassTimer::begin(VkCommandBuffer cmd) {
+  if (mask_ == 0) return;
+  vkCmdResetQueryPool(cmd, pool_, 0, 2);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_, 0);
+}
+
+void PassTimer::end(VkCommandBuffer cmd) {
+  if (mask_ != 0) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 1);
+}
+
+double PassTimer::ms() {
+  uint64_t ts[2] = {};
+  if (mask_ == 0 || vkGetQueryPoolResults(ctx_.device, pool_, 0, 2, sizeof ts, ts, sizeof ts[0],
+                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) != VK_SUCCESS)
+    return std::nan("");
+  return double((ts[1] - ts[0]) & mask_) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
+}
+
+GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx), lodWritten_(size_t(slots), false) {
+  mask_ = queueTimestampMask(ctx);
   periodNs_ = double(ctx.props.limits.timestampPeriod);
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qi.queryType = VK_QUERY_TYPE_TIMESTAMP;

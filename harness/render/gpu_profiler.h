@@ -58,5 +58,23 @@ class GpuProfiler {
 
 // Timestamp mask from a queue family's timestampValidBits (64 -> all bits, 0 -> none).
 uint64_t timestampMaskFromValidBits(uint32_t validBits);
+// The context's queue family's mask: wrap-around of its timestamps is masked with it.
+uint64_t queueTimestampMask(const Context& ctx);
+
+// GPU time of one pass outside the timed frames (a measurement compute pass): begin() and end()
+// bracket it in its command buffer, ms() reads it after the submission completed; NaN where the
+// queue has no timestamp bits (then nothing is written).
+class PassTimer {
+ public:
+  explicit PassTimer(Context& ctx);
+  void begin(VkCommandBuffer cmd);
+  void end(VkCommandBuffer cmd);
+  double ms();
+
+ private:
+  Context& ctx_;
+  vk::Unique<VkQueryPool> pool_;
+  uint64_t mask_ = 0;
+};
 
 }  // namespace lb
