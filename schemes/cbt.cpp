@@ -118,6 +118,7 @@ GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, uint32_t perDraw) {
   g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
   g.convergeLimit = 2 * D + 8;
   g.overflowWord = LB_CBT_OVERFLOW;
+  g.treeFirstWord = LB_CBT_HEADER, g.treeWordCount = words;  // the leaf bitfield: the tree
   g.facts = {{"cbt_depth", double(D)},
              {"cbt_lattice_log2", double(L)},
              {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},

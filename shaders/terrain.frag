@@ -28,16 +28,30 @@ vec3 mapNormal(vec2 worldXZ) {
   return normalize(vec3(g.x, 1.0, g.y));
 }
 
-vec2 toPixels(vec3 world) {
-  vec4 c = frame.viewProj * vec4(world, 1.0);
-  return c.xy / c.w * 0.5 * frame.viewport.xy;
+// The screen-space error of a drawn pixel: the on-screen length of the vertical segment from the
+// drawn point to the true surface point at the same x, z. A true point at or behind the near plane
+// (steep relief beside a low camera that looks down) has no projection, and one just in front of it
+// projects arbitrarily far, so the segment is cut where it crosses the near plane (clip z = 0 with
+// GLM's zero-to-one depth) and the length is capped at the viewport's diagonal: every pixel's error
+// is finite, continuous in the geometry, at most the diagonal, and scale-free (the near plane scales
+// with the terrain). docs/results-format.md states the same rule.
+float screenError(vec3 drawn, vec3 truth) {
+  vec4 a = frame.viewProj * vec4(drawn, 1.0), b = frame.viewProj * vec4(truth, 1.0);
+  a.z = max(a.z, 0.0);  // a rasterised point is in front of the near plane up to rounding
+  if (b.z < 0.0) b = mix(a, b, a.z / (a.z - b.z));
+  // A point on the near plane keeps w = near > 0; the cap also bounds what its division yields.
+  vec2 half_ = 0.5 * frame.viewport.xy;
+  float diagonal = length(frame.viewport.xy);
+  vec2 d = (b.xy / max(b.w, 1e-30) - a.xy / max(a.w, 1e-30)) * half_;
+  float len = length(d);
+  return isinf(len) || isnan(len) ? diagonal : min(len, diagonal);
 }
 
 void main() {
   if (kMode == LB_MODE_ERROR) {
     // Vertical distance between the tessellated surface and the true heightfield, in pixels.
     vec3 truePoint = vec3(inWorld.x, terrainHeight(inWorld.xz), inWorld.z);
-    outColor = vec4(distance(toPixels(inWorld), toPixels(truePoint)), 0.0, 0.0, 1.0);
+    outColor = vec4(screenError(inWorld, truePoint), 0.0, 0.0, 1.0);
     return;
   }
   vec3 n = kHeightNormals ? terrainNormal(inWorld.xz) : mapNormal(inWorld.xz);

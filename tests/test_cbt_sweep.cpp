@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "config/config.h"
 #include "report/equal_error.h"
 #include "report/run_data.h"
@@ -124,4 +125,52 @@ TEST(CbtSweep, NoEqualErrorSectionWithoutAMatch) {
   ReportRun run;
   run.context = {{"device", "llvmpipe"}};
   EXPECT_FALSE(equalErrorSection(run).present);
+}
+
+// `lodbench render` of a stateful scheme walks the case's history (converge at frame 0, warm up,
+// the updates of frames 0 ... f) and so gives the run's own image of frame f byte for byte: cbt
+// and cbt-ts, two frames of two paths. Before, it drew the initial four leaves whatever the frame.
+TEST(CbtSweep, RenderGivesTheRunsOwnImageOfAStatefulFrame) {
+  json cfg = treeRun("cbt-render");
+  cfg["repetitions"] = 1;
+  cfg.erase("timing");
+  cfg["paths"] = {"paths/dive.csv", "paths/flyover.csv"};
+  cfg["schemes"] = {{{"name", "cbt"}, {"params", {{"tri_size", 5}}}}, "cbt-ts"};
+  cfg["measure"] = {{"every", 0}};
+  cfg["images"] = {{"frames", {2, 6}}, {"modes", {"shaded"}}, {"worst", false}, {"resolution", {160, 90}}};
+  const fs::path dir = runIt(cfg, "render");
+  int compared = 0;
+  std::set<uint64_t> instanceCounts;
+  for (const auto& e : fs::directory_iterator(dir / "cases")) {
+    const json c = json::parse(std::ifstream(e.path()));
+    const std::string id = c["case_id"], scheme = c["scheme"];
+    ASSERT_EQ(c["status"], "ok") << id << ": " << c["reason"];
+    std::string params;
+    for (const auto& [k, v] : c["params"].items()) params += " --param " + k + "=" + v.dump();
+    for (int frame : {2, 6}) {
+      for (const json& f : c["frames"])
+        if (f["frame"] == frame && f.contains("instances")) instanceCounts.insert(f["instances"].get<uint64_t>());
+      const fs::path given = c["path"].get<std::string>();
+      const fs::path pathFile = given.is_absolute() ? given : fs::path(kConfigs) / given;
+      const fs::path mine = dir / ("render_" + id + "_" + std::to_string(frame) + ".png");
+      const lb::test::CliOut out = lb::test::lodbench(
+          "render --scheme " + scheme + params + " --path " + pathFile.string() + " --frame " + std::to_string(frame) +
+              " --fps 6 --width 160 --height 90 --grid 16 --size 257 --seed 5 --extent 2000 --height-scale 300 "
+              "--warmup 2 --out " +
+              mine.string(),
+          false);
+      ASSERT_EQ(out.code, 0) << out.text;
+      const fs::path theirs = dir / "images" / (id + "_f" + std::to_string(frame) + "_shaded.png");
+      ASSERT_TRUE(fs::exists(theirs)) << theirs;
+      auto bytes = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+      };
+      EXPECT_EQ(bytes(mine), bytes(theirs)) << id << " frame " << frame << ": " << out.text;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 8);
+  EXPECT_GT(instanceCounts.size(), 2u) << "the frames must draw different trees, or this proves little";
+  fs::remove_all(dir);
 }

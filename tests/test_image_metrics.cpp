@@ -89,6 +89,37 @@ TEST(ImageMetrics, CrackPixelsFindHolesNotSilhouettes) {
   EXPECT_EQ(crackPixels(ref, ref), 0);
 }
 
+// What crackPixels cannot tell apart (docs/results-format.md, cracks_pixels): a see-through that drawn
+// silhouettes enclose. Two drawn spikes side by side with a third in front closing the gap above
+// leave one clear pixel where the truth's fuller spikes show terrain; in the image it is the same
+// as a one-pixel hole in the mesh, and it counts, as the docs state. A seam of the same frame is found.
+TEST(ImageMetrics, CrackPixelsCountAnEnclosedSeeThroughAsDocumented) {
+  const int w = 40, h = 30;
+  RgbaImage ref = solid(w, h, 60, 90, 40);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < w; ++x) setPx(ref, x, y, 255, 0, 255);  // sky
+  RgbaImage img = ref;
+  // Drawn: sky down to row 14 except spike A (x 10..12), spike B (x 14..16) and spike C in front
+  // across x 11..15, rows 9..13: column 13 between A and B is open at row 14 alone, under C.
+  for (int y = 6; y < 15; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool spike = (x >= 10 && x <= 12) || (x >= 14 && x <= 16) || (y >= 9 && y <= 13 && x >= 11 && x <= 15);
+      if (!spike) setPx(img, x, y, 255, 0, 255);
+    }
+  // The truth: the same sky, terrain below row 6 where the drawn spikes are thinner (ref above).
+  for (int y = 6; y < 15; ++y)
+    for (int x = 0; x < w; ++x)
+      if (!(x >= 9 && x <= 17)) setPx(ref, x, y, 255, 0, 255);
+  // A single see-through pixel at (13, 14): between A and B, under C, above the ground at row 15.
+  setPx(img, 13, 14, 255, 0, 255);
+  std::vector<uint8_t> mask;
+  EXPECT_EQ(crackPixels(img, ref, &mask), 1);
+  EXPECT_EQ(mask[size_t(14 * w + 13)], 1);
+  // A planted seam in the ground is still found beside it.
+  for (int x = 20; x < 30; ++x) setPx(img, x, 22, 255, 0, 255);
+  EXPECT_EQ(crackPixels(img, ref), 11);
+}
+
 // ---- Ground truth: the tessellated `reference` scheme against the ray cast of
 // the true heightfield (metrics/raycast.h), which image metrics now compare against.
 

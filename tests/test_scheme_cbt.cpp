@@ -192,3 +192,30 @@ TEST_F(Cbt, LeavesBeyondTheCapacityFailTheReplay) {
     EXPECT_NE(std::string(e.what()).find("LOD state overflow"), std::string::npos) << e.what();
   }
 }
+
+// converged_state_sha256 is the tree's (the leaf bitfield), not the header's: the terrain scaled by
+// 4 (extent, heights and camera; exact in floats) converges to the same leaves while the header's
+// height range differs, and the hash is equal. A tree one leaf apart hashes differently.
+TEST_F(Cbt, ConvergedHashCoversTheTreeAloneNotTheHeader) {
+  const Heightfield& hf = testTerrain();
+  Heightfield big = hf;
+  big.extent *= 4;
+  for (float& h : big.h) h *= 4;
+  big.updateRange();
+  const CameraPose pose = firstPose("flyover.csv", hf);
+  CameraPose bigPose = pose;
+  bigPose.eye *= 4.0f, bigPose.target *= 4.0f;
+  Renderer a(gpu(), hf, {160, 90, 16}), b(gpu(), big, {160, 90, 16});
+  a.setScheme(cbtScheme(), {});
+  b.setScheme(cbtScheme(), {});
+  ConvergeResult ca = convergeLod(a, pose), cb = convergeLod(b, bigPose);
+  const std::vector<uint32_t> sa = a.readLodState(), sb = b.readLodState();
+  EXPECT_NE(sa[LB_CBT_MAX_HEIGHT], sb[LB_CBT_MAX_HEIGHT]) << "the headers must differ, or this proves nothing";
+  ASSERT_EQ(cbt::leaves(sa), cbt::leaves(sb)) << "the scaled terrain must give the same tree";
+  EXPECT_EQ(ca.stateSha256, cb.stateSha256);
+  // Another tree (a finer target) hashes differently.
+  a.setScheme(cbtScheme(), {{"tri_size", 4}});
+  ConvergeResult fine = convergeLod(a, pose);
+  EXPECT_NE(fine.instances, ca.instances);
+  EXPECT_NE(fine.stateSha256, ca.stateSha256);
+}

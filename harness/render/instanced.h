@@ -92,6 +92,10 @@ struct GpuLod {
   // >= 0: the state word where the passes count instances beyond maxInstances, not drawn; the
   // replay of a stateful scheme fails its case when an update leaves it above 0.
   int64_t overflowWord = -1;
+  // The state words that are the tree itself (first word, count): converged_state_sha256 hashes
+  // these alone, so two equal trees hash equal whatever the header's bookkeeping (update counter,
+  // the terrain's height range for culling, capacities). Count 0: the whole state but word 0.
+  uint32_t treeFirstWord = 0, treeWordCount = 0;
   // What the state's size follows from (a tree's depth, its bytes), recorded with the case.
   std::vector<std::pair<std::string, double>> facts;
 };

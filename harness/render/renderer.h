@@ -164,6 +164,7 @@ class Renderer {
   bool statefulLod() const { return gpuIndirect_ && gpuLod_.convergeLimit > 0; }
   uint32_t convergeLimit() const { return gpuIndirect_ ? gpuLod_.convergeLimit : 0; }
   const std::vector<std::pair<std::string, double>>& gpuLodFacts() const { return gpuLod_.facts; }
+  const GpuLod& gpuLod() const { return gpuLod_; }
   uint32_t updateLod(const CameraPose& pose);
   void setLodFrozen(bool frozen) { lodFrozen_ = frozen; }
   // Instances the last updateLod left beyond the record capacity (drawn: none of them).

@@ -25,10 +25,22 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
   }
   out.instances = last;
   std::vector<uint32_t> state = r.readLodState();
-  if (!state.empty()) state[0] = 0;
+  const GpuLod& g = r.gpuLod();
+  if (g.treeWordCount > 0 && size_t(g.treeFirstWord) + g.treeWordCount <= state.size()) {
+    state = std::vector<uint32_t>(state.begin() + g.treeFirstWord, state.begin() + g.treeFirstWord + g.treeWordCount);
+  } else if (!state.empty()) {
+    state[0] = 0;
+  }
   out.stateSha256 =
       sha256Hex(std::string(reinterpret_cast<const char*>(state.data()), state.size() * sizeof(uint32_t)));
   return out;
+}
+
+ConvergeResult startLod(Renderer& r, const CameraPose& first, int warmup) {
+  ConvergeResult c = convergeLod(r, first);
+  for (int i = 0; i < warmup; ++i) r.updateLod(first);
+  r.snapshotLodState();
+  return c;
 }
 
 nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts) {

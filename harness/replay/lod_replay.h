@@ -20,8 +20,9 @@ struct ConvergeResult {
   int updates = 0;         // updates run from the reset
   bool converged = false;  // the instance count held for kSteadyUpdates updates within the limit
   uint32_t instances = 0;  // at the end
-  // SHA-256 of the converged state but its first word (the update counter): equal states on two
-  // devices mean the same tree.
+  // SHA-256 of the converged tree: the state words the scheme names as its tree (GpuLod::treeFirstWord,
+  // cbt's leaf bitfield), not the header, so equal hashes mean the same leaves on any device,
+  // terrain height range or update count.
   std::string stateSha256;
 };
 constexpr int kSteadyUpdates = 4;
@@ -29,6 +30,11 @@ constexpr int kSteadyUpdates = 4;
 // Resets the state, then updates at `pose` until the instance count is unchanged for kSteadyUpdates
 // updates, at most Renderer::convergeLimit; not converging is recorded, not fatal.
 ConvergeResult convergeLod(Renderer& r, const CameraPose& pose);
+
+// S0 as a case's timed frames start from it: converged at the path's first pose, then `warmup`
+// updates there (the warm-up frames'), snapshotted. For the callers that rebuild a case's states
+// outside its sweep (matched searches, `lodbench render`).
+ConvergeResult startLod(Renderer& r, const CameraPose& first, int warmup);
 
 // The case's state record: converge_updates, lod_converged and the scheme's facts (GpuLod::facts).
 nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts);

@@ -42,9 +42,7 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
     // path's updates up to each evaluated frame (replay/lod_replay.h), drawn frozen there.
     std::unique_ptr<LodReplay> replay;
     if (r.statefulLod()) {
-      convergeLod(r, poseAt(0));
-      for (int i = 0; i < config.warmupFrames; ++i) r.updateLod(poseAt(0));
-      r.snapshotLodState();
+      startLod(r, poseAt(0), config.warmupFrames);
       replay = std::make_unique<LodReplay>(r, poseAt, std::vector<uint32_t>{});
     }
     double sum = 0;
