@@ -2,12 +2,16 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
 
 #include "camera/camera_path.h"
 #include "config/config.h"
 #include "render/renderer.h"
 #include "replay/lod_replay.h"
 #include "replay/measure_gpu.h"
+#include "replay/run_case.h"
 #include "stats.h"
 
 namespace lb {
@@ -80,33 +84,85 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
     ++out.evaluations;
     return sum / n;
   };
+  // A trial that cannot run (a tree past its pool, a device limit) is recorded with its reason and
+  // the search goes on around it; the case fails only when no trial runs.
+  auto trial = [&](double v) -> std::optional<double> {
+    if (ps->integer) v = std::round(v);
+    for (const MatchTrial& t : out.trials)  // an integer value met again: its recorded outcome
+      if (t.value == v) return std::isnan(t.achieved) ? std::nullopt : std::optional<double>(t.achieved);
+    try {
+      double f = evaluate(v);
+      out.trials.push_back({v, f, ""});
+      return f;
+    } catch (const Interrupted&) {
+      throw;
+    } catch (const std::logic_error&) {
+      throw;
+    } catch (const std::exception& e) {
+      ++out.evaluations;
+      out.trials.push_back({v, std::nan(""), e.what()});
+      return std::nullopt;
+    }
+  };
   // Parameters spanning orders of magnitude (a triangle width of 0.5..64 px) are searched in log space.
   bool logScale = ps->min > 0 && ps->max / ps->min > 16;
   auto toX = [&](double v) { return logScale ? std::log(v) : v; };
   auto fromX = [&](double x) { return logScale ? std::exp(x) : x; };
   double lo = toX(ps->min), hi = toX(ps->max);
-  double flo = evaluate(fromX(lo)), fhi = evaluate(fromX(hi));
-  bool increasing = fhi >= flo;
+  // An end that cannot run is replaced by the last runnable value towards the other end: a few
+  // bisection steps between a value that ran and one that did not.
+  constexpr int kBoundarySteps = 6;
+  auto boundary = [&](double good, double fgood, double bad) {
+    for (int k = 0; k < kBoundarySteps; ++k) {
+      double m = 0.5 * (good + bad);
+      if (auto f = trial(fromX(m)))
+        good = m, fgood = *f;
+      else
+        bad = m;
+    }
+    return std::pair<double, double>(good, fgood);
+  };
+  std::optional<double> olo = trial(fromX(lo)), ohi = trial(fromX(hi));
+  if (!olo && !ohi) {  // neither end runs: the middle, then each end's boundary from there
+    const double mid = 0.5 * (lo + hi);
+    if (std::optional<double> fm = trial(fromX(mid))) {
+      std::tie(lo, olo) = boundary(mid, *fm, lo);
+      std::tie(hi, ohi) = boundary(mid, *fm, hi);
+    }
+  } else if (!olo) {
+    std::tie(lo, olo) = boundary(hi, *ohi, lo);
+  } else if (!ohi) {
+    std::tie(hi, ohi) = boundary(lo, *olo, hi);
+  }
+  if (!olo || !ohi) {
+    std::string why = out.trials.empty() ? "" : ": " + out.trials.back().reason;
+    throw std::runtime_error("match: no value of '" + out.param + "' runs (" + std::to_string(out.trials.size()) +
+                             " trials)" + why);
+  }
   double target = spec.value;
+  const double flo = *olo, fhi = *ohi;
+  const bool increasing = fhi >= flo;
   if ((increasing && (target < flo || target > fhi)) || (!increasing && (target > flo || target < fhi))) {
     out.reachable = false;
-    bool takeLo = std::abs(target - flo) < std::abs(target - fhi);
-    out.value = fromX(takeLo ? lo : hi);
-    out.achieved = takeLo ? flo : fhi;
   } else {
     for (int i = 0; i < spec.iterations; ++i) {
-      double mid = 0.5 * (lo + hi);
       if (ps->integer && std::round(fromX(hi)) - std::round(fromX(lo)) <= 1) break;
-      double fm = evaluate(fromX(mid));
-      if ((fm < target) == increasing)
-        lo = mid, flo = fm;
-      else
-        hi = mid, fhi = fm;
+      double mid = 0.5 * (lo + hi);
+      std::optional<double> fm = trial(fromX(mid));
+      // A trial that cannot run lies on the fine side (more triangles, more leaves): the finer end
+      // (the one with less error) moves there.
+      bool lowSide = fm ? (*fm < target) == increasing : increasing;
+      (lowSide ? lo : hi) = mid;
     }
-    bool takeLo = std::abs(target - flo) <= std::abs(target - fhi);
-    out.value = fromX(takeLo ? lo : hi);
-    out.achieved = takeLo ? flo : fhi;
   }
+  // The answer: the trial whose metric is closest to the target (the first such, so ties keep the
+  // search's order); unreachable targets state the closest configuration tried.
+  const MatchTrial* best = nullptr;
+  for (const MatchTrial& t : out.trials)
+    if (!std::isnan(t.achieved) && (!best || std::abs(t.achieved - target) < std::abs(best->achieved - target)))
+      best = &t;
+  out.value = best->value;
+  out.achieved = best->achieved;
   if (ps->integer) out.value = std::round(out.value);
   return out;
 }

@@ -3,6 +3,7 @@
 // hits a triangle budget or a mean screen-space error on its path; schemes are then compared at
 // equal cost or equal quality.
 #include <string>
+#include <vector>
 
 #include "config/match_spec.h"
 #include "render/scheme.h"
@@ -15,12 +16,21 @@ struct Case;
 struct Heightfield;
 struct CameraPath;
 
+// One evaluation of the search: the value tried, the metric it reached (NaN when it could not run)
+// and why it could not.
+struct MatchTrial {
+  double value = 0;
+  double achieved = 0;
+  std::string reason;
+};
+
 struct MatchResult {
   std::string param;    // the parameter searched ("" when the scheme has none)
   double value = 0;     // chosen value
   double achieved = 0;  // the metric at that value
   int evaluations = 0;
-  bool reachable = true;  // false when the target lies outside the parameter's range
+  bool reachable = true;           // false when the target lies outside the parameter's range
+  std::vector<MatchTrial> trials;  // every evaluation in order, those that could not run included
 };
 
 // The parameter a match searches is the scheme's SchemeInfo::mainParam; "" = none, nothing is searched.
