@@ -232,9 +232,19 @@ int main(int argc, char** argv) {
   std::string mergeOut;
   std::vector<std::string> mergeInputs;
   bool mergeForce = false;
-  merge->add_option("--out", mergeOut, "Merged run directory")->required();
-  merge->add_option("runs", mergeInputs, "Shard run directories")->required();
-  merge->add_flag("--force", mergeForce, "Merge runs of different configs, devices or drivers");
+  merge->add_option("--out", mergeOut, "Merged run directory (not one of the runs)")->required();
+  merge->add_option("runs", mergeInputs, "Shard run directories, in any order; one named twice counts once")
+      ->required();
+  merge->add_flag("--force", mergeForce,
+                  "Merge runs of different configs, tool versions, devices or drivers (never two differing copies "
+                  "of a case)");
+  merge->footer(
+      "Copies of a case (same case id) in several folders, as a retried shard leaves them: byte-identical\n"
+      "copies (case file and its images) are kept once; a finished (ok) copy is kept over failed or skipped\n"
+      "ones; two finished copies that differ in any byte (a case measured twice: other timings) are refused,\n"
+      "exit 2, naming the case and both folders: leave a folder out or delete one copy. Unfinished copies\n"
+      "that differ: the first folder's by name. The output depends only on the set of folders: merging\n"
+      "them again, in any order, gives the same bytes (docs/results-format.md, Merging shards).");
   double testSlowdown = 0;
   run->add_option("--test-slowdown", testSlowdown,
                   "Testing only: redraw this fraction of the patches inside the timed region (planted regression)")
@@ -424,9 +434,10 @@ int main(int argc, char** argv) {
     }
     if (*merge) {
       MergeTotals t = mergeRuns(mergeOut, mergeInputs, mergeForce);
+      for (auto& n : t.notes) std::fprintf(stderr, "lodbench: merge: %s\n", n.c_str());
       std::printf("%s\n", mergeOut.c_str());
-      std::fprintf(stderr, "lodbench: merged %d cases (%d duplicates) from %zu runs -> %s\n", t.cases, t.duplicates,
-                   mergeInputs.size(), mergeOut.c_str());
+      std::fprintf(stderr, "lodbench: merged %d cases (%d duplicates left out) from %d runs -> %s\n", t.cases,
+                   t.duplicates, t.folders, mergeOut.c_str());
       return 0;
     }
     if (*report) {

@@ -280,6 +280,16 @@ CompareReport compareRuns(const RunData& base, const RunData& cand, const Compar
   }
   if (ctxString(base.context, "device") != ctxString(cand.context, "device"))
     r.notes.push_back("timings come from different devices: ratios compare devices, not code");
+  // Two boards of one model: counters stay comparable, timings carry the board-to-board spread.
+  else if (std::string b = ctxString(base.context, "device_uuid"), c = ctxString(cand.context, "device_uuid");
+           !b.empty() && !c.empty() && b != c)
+    r.notes.push_back("timings come from two boards of one model (device_uuid " + b + " (baseline) vs " + c +
+                      " (candidate)): ratios include the boards' own difference");
+  for (const char* k : {"power_limit_w", "power_limit_enforced_w"})
+    if (base.context.contains(k) && cand.context.contains(k) && base.context[k].is_number() &&
+        cand.context[k].is_number() && base.context[k] != cand.context[k])
+      r.notes.push_back(std::string("the boards ran under different power limits (") + k + " " +
+                        base.context[k].dump() + " W (baseline) vs " + cand.context[k].dump() + " W (candidate))");
   if (cand.testSlowdown > 0)
     r.notes.push_back("the candidate ran with a planted test slowdown of " + fmt(cand.testSlowdown) +
                       " (run --test-slowdown)");

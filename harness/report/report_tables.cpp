@@ -185,6 +185,12 @@ Table contextTable(const ReportRun& run) {
   auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({textCell(k), textCell(v)}); };
   row("config", run.name + " (" + text(x, "config_file") + ")");
   row("device", text(x, "device") + " (vendor " + text(x, "vendor_id") + ", device " + text(x, "device_id") + ")");
+  if (x.contains("device_uuid")) {  // which board of the model, where the run recorded it
+    std::string power = plainNumber(x, "power_limit_w") ? "power limit " + text(x, "power_limit_w") + " W (enforced " +
+                                                              text(x, "power_limit_enforced_w") + " W)"
+                                                        : "power limit unknown: " + text(x, "power_limit_reason");
+    row("board", "UUID " + text(x, "device_uuid") + ", " + power);
+  }
   row("driver", text(x, "driver") + ", " + text(x, "driver_info") + ", version " + text(x, "driver_version"));
   row("Vulkan API", text(x, "api_version") + ", timestampPeriod " + text(x, "timestamp_period_ns") + " ns");
   row("lodbench",

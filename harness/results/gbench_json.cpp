@@ -80,28 +80,33 @@ std::string ctxString(const json& ctx, const char* key, const std::string& fallb
   return ctx.contains(key) && ctx[key].is_string() ? ctx[key].get<std::string>() : fallback;
 }
 
-json contextBlock(const std::string& runDir, const json& ctx) {
+// merged: a run merge wrote (run.json merged_from), whose cases ran on other machines: the facts of
+// the machine writing the file (executable, CPUs, caches, load) would describe the merge, and
+// change from one merge of the same folders to the next, so they are left out.
+json contextBlock(const std::string& runDir, const json& ctx, bool merged) {
   std::string time = ctxString(ctx, "time", isoTimeUtc());  // 2026-11-21T20:05:38Z
   if (!time.empty() && time.back() == 'Z') time.replace(time.size() - 1, 1, "+00:00");
-  double load[3] = {0, 0, 0};
-  int nLoad = getloadavg(load, 3);
-  json loadAvg = json::array();
-  for (int i = 0; i < nLoad; ++i) loadAvg.push_back(load[i]);
-  std::string governor = readLine("/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor");
   json c = {{"date", time},
             {"host_name", ctxString(ctx, "host", "unknown")},
-            {"executable", executablePath()},
-            {"num_cpus", std::max(1u, std::thread::hardware_concurrency())},
-            {"mhz_per_cpu", int(cpuMhz())},
-            {"cpu_scaling_enabled", !governor.empty() && governor != "performance"},
-            {"caches", cpuCaches()},
-            {"load_avg", loadAvg},
             {"library_build_type", ctxString(ctx, "build_type", "unknown")},
             {"json_schema_version", 1},
             {"lodbench_schema_version", kSchemaVersion},
             {"run_dir", runDir}};
-  for (const char* key :
-       {"tool_version", "git_commit", "device", "driver", "driver_info", "api_version", "timestamp_period_ns"})
+  if (!merged) {
+    double load[3] = {0, 0, 0};
+    int nLoad = getloadavg(load, 3);
+    json loadAvg = json::array();
+    for (int i = 0; i < nLoad; ++i) loadAvg.push_back(load[i]);
+    std::string governor = readLine("/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor");
+    c.update({{"executable", executablePath()},
+              {"num_cpus", std::max(1u, std::thread::hardware_concurrency())},
+              {"mhz_per_cpu", int(cpuMhz())},
+              {"cpu_scaling_enabled", !governor.empty() && governor != "performance"},
+              {"caches", cpuCaches()},
+              {"load_avg", loadAvg}});
+  }
+  for (const char* key : {"tool_version", "git_commit", "device", "device_uuid", "driver", "driver_info", "api_version",
+                          "timestamp_period_ns", "power_limit_w"})
     if (ctx.contains(key)) c[key] = ctx[key];
   return c;
 }
@@ -197,7 +202,7 @@ json googleBenchmarkJson(const std::string& runDir) {
       benchmarks.push_back(a);
     }
   }
-  return {{"context", contextBlock(runDir, ctx)}, {"benchmarks", benchmarks}};
+  return {{"context", contextBlock(runDir, ctx, run.contains("merged_from"))}, {"benchmarks", benchmarks}};
 }
 
 std::string writeGoogleBenchmarkJson(const std::string& runDir) {

@@ -33,10 +33,10 @@ void endRunJson(json& run, const RunEnd& end) {
   run["validation_errors"] = end.validationErrors;
 }
 
-json mergedRunJson(const json& context, const std::vector<std::string>& inputs, bool forced,
-                   const std::string& startTime) {
-  return {{"schema_version", kSchemaVersion}, {"context", context},      {"merged_from", inputs}, {"forced", forced},
-          {"start_time", startTime},          {"end_time", isoTimeUtc()}};
+json mergedRunJson(const json& context, const json& mergedFrom, bool forced, const json& startTime,
+                   const json& endTime) {
+  return {{"schema_version", kSchemaVersion}, {"context", context}, {"merged_from", mergedFrom}, {"forced", forced},
+          {"start_time", startTime},          {"end_time", endTime}};
 }
 
 }  // namespace lb

@@ -25,8 +25,10 @@ struct RunEnd {
 };
 void endRunJson(nlohmann::json& run, const RunEnd& end);
 
-// A run merged from shards or rounds: the first one's context and start time.
-nlohmann::json mergedRunJson(const nlohmann::json& context, const std::vector<std::string>& inputs, bool forced,
-                             const std::string& startTime);
+// A run merged from shards or rounds (sweep/merge.h): the context it keeps, the folders merged,
+// the earliest start and latest end among them (null where none has one). No time of the merge
+// itself: merging the same folders again gives the same bytes.
+nlohmann::json mergedRunJson(const nlohmann::json& context, const nlohmann::json& mergedFrom, bool forced,
+                             const nlohmann::json& startTime, const nlohmann::json& endTime);
 
 }  // namespace lb

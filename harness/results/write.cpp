@@ -19,6 +19,7 @@
 #include "stats.h"
 #include "version.h"
 #include "vk/context.h"
+#include "vk/device_identity.h"
 
 namespace lb {
 
@@ -67,6 +68,7 @@ std::string isoTimeUtc() {
 json runContext(const Context& ctx, const Config& config) {
   char host[256] = "unknown";
   gethostname(host, sizeof host - 1);
+  const PowerLimit power = readPowerLimit(ctx.props.vendorID, ctx.deviceUuid);
   return {
       {"tool", "lodbench"},
       {"tool_version", kToolVersion},
@@ -79,6 +81,11 @@ json runContext(const Context& ctx, const Config& config) {
       {"device", ctx.props.deviceName},
       {"device_id", ctx.props.deviceID},
       {"vendor_id", ctx.props.vendorID},
+      {"device_uuid", ctx.deviceUuid},
+      {"driver_uuid", ctx.driverUuid},
+      {"power_limit_w", power.watts >= 0 ? json(power.watts) : json(nullptr)},
+      {"power_limit_enforced_w", power.enforcedWatts >= 0 ? json(power.enforcedWatts) : json(nullptr)},
+      {"power_limit_reason", power.reason.empty() ? json(nullptr) : json(power.reason)},
       {"driver", ctx.driverName},
       {"driver_info", ctx.driverInfo},
       {"driver_version", driverVersionString(ctx.props)},

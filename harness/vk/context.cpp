@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "error.h"
+#include "vk/device_identity.h"
 #include "vk/vk_check.h"
 
 namespace lb {
@@ -243,11 +244,14 @@ void createContext(Context& ctx, const ContextOptions& options) {
   ctx.physicalDevice = pds[size_t(idx)];
   vkGetPhysicalDeviceProperties(ctx.physicalDevice, &ctx.props);
   vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memProps);
-  VkPhysicalDeviceDriverProperties drv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceIDProperties ids{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+  VkPhysicalDeviceDriverProperties drv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &ids};
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &drv};
   vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &p2);
   ctx.driverName = drv.driverName;
   ctx.driverInfo = drv.driverInfo;
+  ctx.deviceUuid = formatUuid(ids.deviceUUID);
+  ctx.driverUuid = formatUuid(ids.driverUUID);
 
   VkPhysicalDeviceFeatures have;
   vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &have);

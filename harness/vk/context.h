@@ -39,6 +39,9 @@ struct Context {
   VkPhysicalDeviceFeatures enabledFeatures{};
   bool drawIndirectCount = false;  // Vulkan 1.2 feature, enabled where the device has it
   std::string driverName, driverInfo;
+  // VkPhysicalDeviceIDProperties, as vk/device_identity.h formats them: which board (two of one
+  // model differ here) and which driver build.
+  std::string deviceUuid, driverUuid;
   bool validationEnabled = false;
   std::vector<DeviceCandidate> candidates;
   // Count of validation messages of severity error (and warnings), for tests to assert zero.
