@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -527,8 +528,16 @@ TEST(GdalConfig, FieldsLabelsAndIdentity) {
 
   // The case file's terrain.source, from the heightfield the runner loaded.
   lb::CaseResult r;
-  r.terrainSource = lb::makeHeightfield(cases[3].terrain).source;
+  const lb::Heightfield atOverview = lb::makeHeightfield(cases[3].terrain);
+  r.terrainSource = atOverview.source;
+  r.terrainWidth = atOverview.width;
+  r.terrainHeight = atOverview.height;
   const nlohmann::json t = lb::caseJson(cases[3], r)["terrain"];
+  // The grid the overview gave (9 x 5 averaged 2:1, rounded up), not the raster's; a gdal terrain
+  // has no size or seed (issue 31 item 6).
+  EXPECT_EQ(t["samples"], nlohmann::json({5, 3}));
+  EXPECT_FALSE(t.contains("size")) << t.dump();
+  EXPECT_FALSE(t.contains("seed")) << t.dump();
   const nlohmann::json& s = t["source"];
   EXPECT_EQ(s["driver"], "GTiff");
   EXPECT_EQ(s["raster_size"], nlohmann::json({9, 5}));
@@ -652,13 +661,28 @@ TEST(GdalCli, RunRecordsTheSourceInTheCaseFile) {
   const std::string dir = testDir();
   std::ofstream(dir + "/ok.csv") << kCsv;
   writeUtm(dir + "/dem.tif");
-  std::ofstream(dir + "/c.json") << config("{\"type\": \"gdal\", \"file\": \"dem.tif\", \"window\": [1, 0, 8, 5]}");
+  std::ofstream(dir + "/c.json") << config(
+      "{\"type\": \"gdal\", \"file\": \"dem.tif\", \"window\": [1, 0, 8, 5]},\n"
+      "{\"type\": \"gdal\", \"file\": \"dem.tif\", \"overview\": 1}");
   const lb::test::CliOut o = lb::test::lodbench("run " + dir + "/c.json --out " + dir + "/out --quiet");
   ASSERT_EQ(o.code, 0) << o.text;
-  std::vector<fs::path> files;
-  for (auto& e : fs::directory_iterator(dir + "/out/cases")) files.push_back(e.path());
-  ASSERT_EQ(files.size(), 1u);
-  const nlohmann::json t = lb::test::readJson(files[0].string())["terrain"];
+  std::map<std::string, nlohmann::json> terrains;  // by label
+  for (auto& e : fs::directory_iterator(dir + "/out/cases")) {
+    const nlohmann::json t = lb::test::readJson(e.path().string())["terrain"];
+    terrains[t["label"].get<std::string>()] = t;
+  }
+  ASSERT_EQ(terrains.size(), 2u);
+  // Read at overview 1: the 5 x 3 samples it loaded, beside the 9 x 5 raster (issue 31 item 6).
+  const nlohmann::json& o1 = terrains["dem-o1"];
+  EXPECT_EQ(o1["samples"], nlohmann::json({5, 3})) << o1.dump();
+  EXPECT_EQ(o1["source"]["raster_size"], nlohmann::json({9, 5}));
+  EXPECT_EQ(o1["source"]["overview"]["level"], 1);
+  for (auto& [label, terrain] : terrains) {
+    EXPECT_FALSE(terrain.contains("size")) << terrain.dump();
+    EXPECT_FALSE(terrain.contains("seed")) << terrain.dump();
+  }
+  const nlohmann::json t = terrains["dem-w1_0_8x5"];
+  EXPECT_EQ(t["samples"], nlohmann::json({8, 5}));
   EXPECT_EQ(t["label"], "dem-w1_0_8x5");
   EXPECT_EQ(t["extent"], 7 * 30.0);
   EXPECT_EQ(t["source"]["driver"], "GTiff");

@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -219,6 +221,102 @@ TEST(GrowSweep, CaseRecordsEveryParameterWithItsResolvedValue) {
   std::getline(csv, row);
   EXPECT_EQ(row.substr(0, row.find(',')), kSphere);
   EXPECT_EQ(row.substr(row.rfind(",sphere,")), ",sphere,0,," + numberText(expected["tri_size"].get<double>()));
+}
+
+// Issue 31 item 3: a parameter listed at its default is the same case as one left out, and a run
+// of either into the folder of the other keeps the case (same digest, the id it was recorded
+// with), never marking it stale and running it again. Every parameter of every scheme, in both
+// directions, through the resume plan (no device).
+TEST(GrowSweep, EveryParameterListedAtItsDefaultKeepsTheCase) {
+  const fs::path root = fresh("listed_default");
+  // The one finished case of `cases` as `run` records it (what planResume reads of it).
+  auto record = [](const fs::path& run, const Case& c) {
+    fs::create_directories(run / "cases");
+    json doc = {{"case_id", c.id},    {"digest", c.digest}, {"inputs", c.inputs},
+                {"scheme", c.scheme}, {"status", "ok"},     {"frames", json::array()}};
+    std::ofstream(run / "cases" / (c.id + ".json")) << doc.dump(1);
+  };
+  int checked = 0;
+  for (const Scheme* scheme : allSchemes()) {
+    const SchemeInfo& info = scheme->info();
+    const std::vector<Case> bare = expandCases(config(json(info.name).dump()));
+    ASSERT_EQ(bare.size(), 1u);
+    for (const ParamSpec& p : info.params) {
+      SCOPED_TRACE(info.name + " " + p.name + "=" + numberText(p.defaultValue));
+      const json entry = {{"name", info.name}, {"params", {{p.name, p.defaultValue}}}};
+      const std::vector<Case> listed = expandCases(config(entry.dump()));
+      ASSERT_EQ(listed.size(), 1u);
+      EXPECT_EQ(listed[0].digest, bare[0].digest) << "the same resolved parameters";
+      EXPECT_NE(listed[0].id, bare[0].id) << "ids name the listed parameters (existing ids stay as they are)";
+      // Left out first, then listed at its default; and the other way round.
+      for (bool listedFirst : {false, true}) {
+        const fs::path run = root / (info.name + "-" + p.name + (listedFirst ? "-listed" : "-bare"));
+        const Case& first = listedFirst ? listed[0] : bare[0];
+        record(run, first);
+        std::vector<Case> now = listedFirst ? bare : listed;
+        const ResumePlan plan = planResume(run.string(), now);
+        EXPECT_EQ(plan.reuse, std::set<std::string>{first.id}) << "kept";
+        EXPECT_TRUE(plan.stale.empty()) << plan.stale.front();
+        EXPECT_TRUE(plan.changed.empty()) << plan.changed.front();
+        EXPECT_EQ(now[0].id, first.id) << "the case keeps the id it was recorded with";
+        ASSERT_EQ(plan.renamed.size(), 1u);
+        EXPECT_NE(plan.renamed[0].find("listed now as"), std::string::npos) << plan.renamed[0];
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 2 * 20) << "every parameter of every scheme";
+
+  // A case of other inputs is not taken for one: a listed value that is not the default stays
+  // a new case beside a stale one.
+  const fs::path run = root / "other-value";
+  record(run, expandCases(config(R"("sphere")"))[0]);
+  std::vector<Case> other = expandCases(config(R"({"name": "sphere", "params": {"tri_size": 9}})"));
+  const ResumePlan plan = planResume(run.string(), other);
+  EXPECT_TRUE(plan.reuse.empty());
+  EXPECT_TRUE(plan.renamed.empty());
+  EXPECT_EQ(plan.stale, std::vector<std::string>{kSphere});
+  EXPECT_EQ(other[0].id.rfind("sphere-tri_size9_", 0), 0u) << other[0].id;
+}
+
+// The same through the binary, as the issue ran it: cdlod, then cdlod with morph 0.3 (its
+// default) into the same --out: dry-run and run keep the one case; nothing is stale or runs.
+TEST(GrowSweep, CdlodWithItsDefaultMorphListedResumesTheBareRun) {
+  ASSERT_EQ(resolveParams(findScheme("cdlod")->info(), {}).at("morph"), 0.3) << "the issue's default";
+  const fs::path dir = fresh("cdlod_morph");
+  const std::string head = R"({"name": "morph", "resolution": [48, 32], "grid": 4, "fps": 10, "warmup_frames": 0,
+    "max_frames": 2, "terrain": {"type": "procedural", "size": 33, "seed": 5},
+    "paths": [")" + kConfigs +
+                           R"(/paths/flyover.csv", ")" + kConfigs + R"(/paths/lowalt.csv"], "schemes": [)";
+  std::ofstream(dir / "bare.json") << head << R"("cdlod"]})";
+  std::ofstream(dir / "listed.json") << head << R"({"name": "cdlod", "params": {"morph": 0.3}}]})";
+  const std::string out = (dir / "run").string();
+  lb::test::CliOut o = lb::test::lodbench("run " + (dir / "bare.json").string() + " --out " + out + " --quiet", false);
+  ASSERT_EQ(o.code, 0) << o.text;
+  const json before = readRunJson(out);
+  ASSERT_EQ(before["case_ids"].size(), 2u);
+  std::map<std::string, std::string> files;
+  for (auto& e : fs::directory_iterator(out + "/cases")) files[e.path().string()] = slurp(e.path());
+
+  o = lb::test::lodbench("run " + (dir / "listed.json").string() + " --out " + out + " --dry-run", false);
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("2 finished case(s) kept, 0 changed (refused without --rerun-changed), 0 stale, 0 to run"),
+            std::string::npos)
+      << o.text;
+  for (auto& id : before["case_ids"]) EXPECT_NE(o.text.find(id.get<std::string>() + "\n"), std::string::npos) << o.text;
+
+  o = lb::test::lodbench("run " + (dir / "listed.json").string() + " --out " + out, false);
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("2 ok (2 resumed)"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("keep the id they were recorded with"), std::string::npos) << o.text;
+  EXPECT_EQ(o.text.find("stale"), std::string::npos) << o.text;
+  const json after = readRunJson(out);
+  EXPECT_EQ(after["case_ids"], before["case_ids"]);
+  EXPECT_TRUE(after["stale_cases"].empty());
+  std::map<std::string, std::string> now;
+  for (auto& e : fs::directory_iterator(out + "/cases")) now[e.path().string()] = slurp(e.path());
+  EXPECT_TRUE(now == files) << "the case files are kept byte for byte, and no other is written";
+  EXPECT_EQ(readJsonFile(out + "/summary.json")["cases"].size(), 2u);
 }
 
 // `run` without --out writes results/<name>/<utc-time>/ under the working directory: `latest`

@@ -13,8 +13,10 @@
 #include "error.h"
 #include "report/run_data.h"
 #include "results/gbench_json.h"
+#include "results/write.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
+#include "terrain/heightfield.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -63,6 +65,10 @@ TEST(Results, SchemaOfEveryFile) {
   EXPECT_EQ(c["schema_version"], 1);
   EXPECT_EQ(c["status"], "ok");
   EXPECT_EQ(c["params"]["level"], 3.0);
+  // A generated terrain records its size and seed, and the samples it ran on.
+  EXPECT_EQ(c["terrain"]["size"], 65);
+  EXPECT_EQ(c["terrain"]["seed"], 3);
+  EXPECT_EQ(c["terrain"]["samples"], json({65, 65}));
   ASSERT_EQ(c["frames"].size(), 4u);
   for (auto& f : c["frames"]) {
     for (const char* key : {"frame", "gpu_ms", "cpu_ms", "fps", "patches", "tes_invocations", "clip_invocations",
@@ -115,6 +121,42 @@ TEST(Results, FailingCaseIsRecordedAndSweepGoesOn) {
       EXPECT_NE(c["reason"].get<std::string>().find("broken.hgt"), std::string::npos) << c["reason"];
     }
   EXPECT_EQ(failed, 2);
+  for (auto& e : fs::directory_iterator(dir / "run" / "cases")) {
+    const json t = readJson(e.path())["terrain"];
+    if (t["type"] != "r16") continue;
+    EXPECT_TRUE(t["samples"].is_null()) << "never loaded";
+    EXPECT_FALSE(t.contains("size")) << t.dump();
+    EXPECT_FALSE(t.contains("seed")) << t.dump();
+  }
+}
+
+// Issue 31 item 6: a file terrain's record carries no size or seed (it uses neither), and names
+// the grid of samples it ran on; its identity (inputs, digest) never held them.
+TEST(Results, FileTerrainRecordsItsSamplesNotSizeOrSeed) {
+  fs::path dir = freshDir("lodbench_file_terrain");
+  fs::create_directories(dir);
+  std::string bytes;
+  for (uint16_t v : {1, 2, 3, 4, 5, 6}) bytes += char(v & 0xff), bytes += char(v >> 8);
+  std::ofstream(dir / "t.r16", std::ios::binary) << bytes;
+  Config config =
+      tinyConfig(R"(, {"type": "r16", "width": 3, "height": 2, "file": ")" + (dir / "t.r16").string() + R"("})");
+  std::vector<Case> cases = expandCases(config);
+  ASSERT_EQ(cases.size(), 4u);
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.id);
+    const Heightfield hf = makeHeightfield(c.terrain);
+    CaseResult r;
+    r.terrainSource = hf.source;
+    r.terrainWidth = hf.width;
+    r.terrainHeight = hf.height;
+    const json t = caseJson(c, r)["terrain"];
+    const bool file = c.terrain.type == "r16";
+    EXPECT_EQ(t.contains("size"), !file) << t.dump();
+    EXPECT_EQ(t.contains("seed"), !file) << t.dump();
+    EXPECT_EQ(c.inputs["terrain"].contains("size"), !file) << "identity as before";
+    EXPECT_EQ(t["samples"], file ? json({3, 2}) : json({65, 65}));
+    if (file) EXPECT_EQ(t["source"]["raster_size"], json({3, 2}));
+  }
 }
 
 TEST(Results, RerunResumesFinishedCases) {

@@ -134,19 +134,42 @@ TEST(CaseIdentity, DuplicateEntriesAreErrorsNamingBoth) {
                          "schemes": [{"name": "uniform", "params": {"level": 3}}, "sphere",
                                      {"name": "uniform", "params": {"level": [2, 3]}}])"));
   });
-  EXPECT_NE(e.find("resume.json: /schemes/0 and /schemes/2 both run uniform level=3"), std::string::npos) << e;
+  // At the second entry's line and field, naming the first's line (issue 31 item 6).
+  EXPECT_NE(e.find("resume.json:4: field '/schemes/2': /schemes/0 (line 3) and /schemes/2 both run uniform level=3"),
+            std::string::npos)
+      << e;
   e = errorOf([] {
     expandCases(config(R"("terrains": [{"type": "procedural", "size": 33, "seed": 5},
                                        {"type": "procedural", "size": 33, "seed": 5}],
                          "paths": ["paths/flyover.csv"], "schemes": ["sphere"])"));
   });
-  EXPECT_NE(e.find("resume.json: terrain #1 (proc33s5) and #2 (proc33s5) are the same"), std::string::npos) << e;
+  EXPECT_NE(e.find("resume.json:3: field '/terrains/1': terrain #1 (proc33s5; /terrains/0, line 2) and #2 (proc33s5) "
+                   "are the same"),
+            std::string::npos)
+      << e;
   e = errorOf([] {
     expandCases(config(R"("terrain": {"type": "procedural", "size": 33, "seed": 5},
                          "paths": ["paths/flyover.csv", "paths/../paths/flyover.csv"], "schemes": ["sphere"])"));
   });
-  EXPECT_NE(e.find("camera path #1"), std::string::npos) << e;
-  EXPECT_NE(e.find("and #2"), std::string::npos) << e;
+  EXPECT_NE(e.find("resume.json:3: field '/paths/1': camera path #1"), std::string::npos) << e;
+  EXPECT_NE(e.find("/paths/0, line 3) and #2"), std::string::npos) << e;
+  // A default listed beside the same parameters left out, and one value twice in one entry.
+  e = errorOf([] {
+    expandCases(config(R"("terrain": {"type": "procedural", "size": 33, "seed": 5}, "paths": ["paths/flyover.csv"],
+                         "schemes": ["cdlod",
+                                     {"name": "cdlod", "params": {"morph": 0.3}}])"));
+  });
+  EXPECT_NE(e.find("resume.json:4: field '/schemes/1': /schemes/0 (line 3) and /schemes/1 both run cdlod (defaults) "
+                   "(also listed as morph=0.3); remove one"),
+            std::string::npos)
+      << e;
+  e = errorOf([] {
+    expandCases(config(R"("terrain": {"type": "procedural", "size": 33, "seed": 5}, "paths": ["paths/flyover.csv"],
+                         "schemes": [{"name": "uniform", "params": {"level": [3, 3.0]}}])"));
+  });
+  EXPECT_NE(e.find("resume.json:3: field '/schemes/0': /schemes/0 lists twice: uniform level=3; remove one"),
+            std::string::npos)
+      << e;
 }
 
 // Defect: resume compared only the config JSON, so an edited path CSV left one run

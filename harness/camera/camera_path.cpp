@@ -36,6 +36,10 @@ constexpr double kMinFovDeg = 1, kMaxFovDeg = 170;
 // Relative coordinates beyond these are almost certainly world units or a typo, not a choice.
 constexpr double kMinXZ = -1, kMaxXZ = 2, kMinY = -1, kMaxY = 10;
 constexpr double kGroundClearance = 0.002;  // fraction of the extent; keeps the near plane above ground
+// Keyframes closer than this in time are refused: the spline's tangents divide by the step, so keys
+// 1e-300 s apart give velocities of 1e300 extents/s (inf and NaN poses). At 1 us the steepest
+// chord (3 extents) is 3e6 extents/s, finite, and no path sampled at up to 1e6 fps needs closer keys.
+constexpr double kMinKeyStepS = 1e-6;  // the message below says "1e-6 s"
 
 // Blank lines are tolerated as well as '#' comments: a stray empty line is not worth an error.
 using Reader = io::CSVReader<kColumns, io::trim_chars<' ', '\t'>, io::no_quote_escape<','>, io::throw_on_overflow,
@@ -188,6 +192,11 @@ CameraPath parseCameraPath(const std::string& text, const std::string& nameForEr
         failColumn(nameForErrors, line, 0,
                    num(k.time) + " is not after the previous keyframe's " + num(path.keys.back().time) + " (line " +
                        std::to_string(prevLine) + "); times must strictly increase");
+      if (!path.keys.empty() && !(k.time - path.keys.back().time >= kMinKeyStepS))
+        failColumn(nameForErrors, line, 0,
+                   num(k.time) + " is only " + num(k.time - path.keys.back().time) +
+                       " s after the previous keyframe's " + num(path.keys.back().time) + " (line " +
+                       std::to_string(prevLine) + "); keyframes must be at least 1e-6 s apart");
       path.keys.push_back(k);
       prevLine = line;
     }

@@ -12,7 +12,7 @@ namespace lb {
 struct Heightfield;
 
 struct Keyframe {
-  double time = 0;  // seconds, strictly increasing
+  double time = 0;  // seconds, strictly increasing, keyframes at least 1e-6 s apart
   glm::dvec3 eye{0}, target{0};
   double fovDeg = 60;
 };

@@ -93,6 +93,14 @@ std::string byteText(double bytes) {
 
 int dryRun(const Config& config, const std::string& outDir, int shardIndex, int shardCount, bool shardGiven) {
   auto cases = shardCases(config, shardIndex, shardCount);
+  // What a resume of --out would keep, planned first: a case recorded under another listing of
+  // the same parameters keeps that id (planResume), and the ids printed are those the run uses.
+  const bool resume = !outDir.empty() && hasRunJson(outDir);
+  ResumePlan plan;
+  if (resume) {
+    checkToolVersion(outDir, readRunJson(outDir));
+    plan = planResume(outDir, cases);
+  }
   for (auto& c : cases) std::printf("%s\n", c.id.c_str());
   std::fflush(stdout);  // the ids first, then the totals on stderr, also through a pipe
   if (!shardGiven)      // no shard asked: nothing to say about shards
@@ -101,10 +109,7 @@ int dryRun(const Config& config, const std::string& outDir, int shardIndex, int 
     std::fprintf(stderr, "lodbench: %zu cases (shard %d/%d of %zu)\n", cases.size(), shardIndex, shardCount,
                  expandCases(config).size());
   std::vector<CaseWork> work = plannedWork(config, cases);
-  if (!outDir.empty() && hasRunJson(outDir)) {  // what a resume of --out would keep
-    json previous = readRunJson(outDir);
-    checkToolVersion(outDir, previous);
-    ResumePlan plan = planResume(outDir, cases);
+  if (resume) {
     std::fprintf(stderr,
                  "lodbench: %s exists: %zu finished case(s) kept, %zu changed (refused without --rerun-changed), "
                  "%zu stale, %zu to run\n",

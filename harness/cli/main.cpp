@@ -446,13 +446,16 @@ int main(int argc, char** argv) {
     }
     if (*run) {
       Config config = loadConfig(configFile);
-      if (!runDevice.empty()) config.device = runDevice;
+      if (!runDevice.empty()) {  // the flag overrides the config, and its message names the flag
+        config.device = runDevice;
+        config.deviceWhere.clear();
+      }
       config.testSlowdown = testSlowdown;
       if (!shard.empty()) parseShard(shard, ro.shardIndex, ro.shardCount);
       if (dryRun) return lb::dryRun(config, ro.outDir, ro.shardIndex, ro.shardCount, !shard.empty());
       ro.progress = !quiet;
       // An unmatched --device (or a missing validation layer) must fail before runSweep creates the run directory.
-      checkContextOptions({config.device, ro.validation});
+      checkContextOptions({config.device, ro.validation, config.deviceWhere});
       // Ctrl-C / kill: finish the current frame, keep every finished case, exit 130.
       std::signal(SIGINT, [](int) { requestStop(); });
       std::signal(SIGTERM, [](int) { requestStop(); });

@@ -35,7 +35,10 @@ static double lodbenchMedian(Renderer& r, RenderMode mode, const CameraPose& pos
 
 int probeCommand(const ProbeCommandOptions& o) {
   Config config = loadConfig(o.config);
-  if (!o.device.empty()) config.device = o.device;
+  if (!o.device.empty()) {
+    config.device = o.device;
+    config.deviceWhere.clear();  // --device's own
+  }
   if (config.terrains.empty() || config.paths.empty())
     throw InputError(o.config + ": probe needs a terrain and a path");
   if (o.split != "auto" && o.split != "on" && o.split != "off")
@@ -56,7 +59,7 @@ int probeCommand(const ProbeCommandOptions& o) {
   for (auto& m : modes) timingRenderMode(m);  // throws InputError for an unknown mode
 
   Context ctx;
-  createContext(ctx, {config.device, false});
+  createContext(ctx, {config.device, false, config.deviceWhere});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
   Heightfield terrain = makeHeightfield(config.terrains[0]);
   CameraPath path = loadCameraPath(config.paths[0]);

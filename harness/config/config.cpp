@@ -140,18 +140,25 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
 }
 
 void parseTerrainSection(const ConfigReader& r, const json& j, const std::string& baseDir, Config& c) {
-  if (j.contains("terrain")) {
-    auto t = parseTerrain(r, j["terrain"], "/terrain", baseDir);
-    c.terrains.insert(c.terrains.end(), t.begin(), t.end());
-  }
-  if (j.contains("terrains")) {
-    if (!j["terrains"].is_array()) r.fail("/terrains", "expected an array");
-    for (size_t i = 0; i < j["terrains"].size(); ++i) {
-      auto t = parseTerrain(r, j["terrains"][i], "/terrains/" + std::to_string(i), baseDir);
-      c.terrains.insert(c.terrains.end(), t.begin(), t.end());
+  auto add = [&](const json& t, const std::string& ptr) {
+    const std::vector<TerrainSpec> specs = parseTerrain(r, t, ptr, baseDir);
+    const bool seeds = t.contains("seed") && t["seed"].is_array();  // one spec per listed seed
+    for (size_t i = 0; i < specs.size(); ++i) {
+      c.terrains.push_back(specs[i]);
+      c.terrainFields.push_back(seeds ? ptr + "/seed/" + std::to_string(i) : ptr);
     }
+  };
+  if (j.contains("terrain")) add(j["terrain"], "/terrain");
+  if (j.contains("terrains")) {
+    // An empty list would silently run the one "terrain" (or the default) alone: say so instead.
+    if (!j["terrains"].is_array() || j["terrains"].empty())
+      r.fail("/terrains", "expected a non-empty array of terrains (or leave 'terrains' out)");
+    for (size_t i = 0; i < j["terrains"].size(); ++i) add(j["terrains"][i], "/terrains/" + std::to_string(i));
   }
-  if (c.terrains.empty()) c.terrains.push_back(TerrainSpec{});
+  if (c.terrains.empty()) {
+    c.terrains.push_back(TerrainSpec{});
+    c.terrainFields.push_back("/terrain");
+  }
 }
 
 // Parameters named <x>min / <x>max bound a range whose width divides (distance falloff): an empty
@@ -240,6 +247,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
                      "match",    "description",   "timing",     "calibration"});
   Config c;
   c.file = file;
+  c.lines = r.lines;
   c.raw = j;
   parseNameSection(r, j, c);
   parseResolutionSection(r, j, c);
@@ -310,16 +318,33 @@ static std::string fileStem(const std::string& path) {
   return stem.substr(0, stem.find('.'));
 }
 
-// Entry i and j of one config list are the same: an error naming both (a sweep that ran them
-// would run one case twice under one id, or silently keep one).
-template <typename T, typename Same, typename Name>
-static void rejectDuplicates(const Config& config, const std::vector<T>& items, const char* what, Same same,
-                             Name name) {
+std::string configField(const Config& config, const std::string& ptr) {
+  auto it = config.lines.find(ptr);
+  return config.file + (it != config.lines.end() ? ":" + std::to_string(it->second) : "") + ": field '" +
+         (ptr.empty() ? "/" : ptr) + "'";
+}
+
+// ", line 7" for the entry at ptr where its line is known, else "".
+static std::string lineOf(const Config& config, const std::string& ptr) {
+  auto it = config.lines.find(ptr);
+  return it != config.lines.end() ? ", line " + std::to_string(it->second) : "";
+}
+
+// Entry i and j of one config list are the same: an error naming both, at the second one's line
+// (a sweep that ran them would run one case twice under one id, or silently keep one). field(i)
+// is entry i's JSON pointer, "" where unknown (a Config built in code).
+template <typename T, typename Same, typename Name, typename Field>
+static void rejectDuplicates(const Config& config, const std::vector<T>& items, const char* what, Same same, Name name,
+                             Field field) {
   for (size_t i = 0; i < items.size(); ++i)
     for (size_t j = i + 1; j < items.size(); ++j)
-      if (same(items[i], items[j]))
-        throw InputError(config.file + ": " + what + " #" + std::to_string(i + 1) + " (" + name(items[i]) + ") and #" +
-                         std::to_string(j + 1) + " (" + name(items[j]) + ") are the same; remove one");
+      if (same(items[i], items[j])) {
+        const std::string fi = field(i), fj = field(j);
+        const std::string entry = std::string(what) + " #" + std::to_string(i + 1) + " (" + name(items[i]) +
+                                  (fi.empty() ? "" : "; " + fi + lineOf(config, fi)) + ") and #" +
+                                  std::to_string(j + 1) + " (" + name(items[j]) + ") are the same; remove one";
+        throw InputError(fj.empty() ? config.file + ": " + entry : configField(config, fj) + ": " + entry);
+      }
 }
 
 std::vector<Case> expandCases(const Config& config) {
@@ -334,15 +359,23 @@ std::vector<Case> expandCases(const Config& config) {
   std::vector<size_t> tIdx(terrains.size()), pIdx(paths.size());
   for (size_t i = 0; i < tIdx.size(); ++i) tIdx[i] = i;
   for (size_t i = 0; i < pIdx.size(); ++i) pIdx[i] = i;
+  auto fieldOf = [](const std::vector<std::string>& fields) {
+    return [&fields](size_t i) { return i < fields.size() ? fields[i] : std::string(); };
+  };
   rejectDuplicates(
       config, tIdx, "terrain", [&](size_t a, size_t b) { return terrains[a] == terrains[b]; },
-      [&](size_t a) { return labels[a]; });
+      [&](size_t a) { return labels[a]; }, fieldOf(config.terrainFields));
   rejectDuplicates(
       config, pIdx, "camera path", [&](size_t a, size_t b) { return paths[a] == paths[b]; },
-      [&](size_t a) { return config.paths[a]; });
+      [&](size_t a) { return config.paths[a]; }, fieldOf(config.pathFields));
+  // Either key takes a list of pairs; "resolutions" wins where both are given (parseResolutionSection).
+  const std::string resField = config.lines.count("/resolutions")  ? "/resolutions/"
+                               : config.lines.count("/resolution") ? "/resolution/"
+                                                                   : "";
   rejectDuplicates(
       config, config.resolutions, "resolution", [](auto& a, auto& b) { return a == b; },
-      [](auto& r) { return std::to_string(r.first) + "x" + std::to_string(r.second); });
+      [](auto& r) { return std::to_string(r.first) + "x" + std::to_string(r.second); },
+      [&](size_t i) { return resField.empty() ? resField : resField + std::to_string(i); });
   struct Variant {
     std::string scheme;
     ParamValues params;
@@ -355,10 +388,20 @@ std::vector<Case> expandCases(const Config& config) {
   auto resolved = [](const Variant& v) { return resolveParams(findScheme(v.scheme)->info(), v.params); };
   for (size_t i = 0; i < variants.size(); ++i)
     for (size_t j = i + 1; j < variants.size(); ++j)
-      if (variants[i].scheme == variants[j].scheme && resolved(variants[i]) == resolved(variants[j]))
-        throw InputError(config.file + ": /schemes/" + std::to_string(variants[i].entry) + " and /schemes/" +
-                         std::to_string(variants[j].entry) + " both run " + variants[i].scheme + " " +
-                         paramsText(variants[i].params) + "; remove one");
+      if (variants[i].scheme == variants[j].scheme && resolved(variants[i]) == resolved(variants[j])) {
+        // At the second entry's line, naming the first's: "c.json:9: field '/schemes/2': /schemes/0
+        // (line 7) and /schemes/2 both run uniform level=3; remove one".
+        const std::string first = "/schemes/" + std::to_string(variants[i].entry),
+                          second = "/schemes/" + std::to_string(variants[j].entry);
+        const std::string firstLine = lineOf(config, first);
+        std::string what = first == second ? first + " lists twice: " + variants[i].scheme + " "
+                                           : first + (firstLine.empty() ? "" : " (" + firstLine.substr(2) + ")") +
+                                                 " and " + second + " both run " + variants[i].scheme + " ";
+        what += paramsText(variants[i].params);
+        if (variants[i].params != variants[j].params)  // one lists a default the other leaves out
+          what += " (also listed as " + paramsText(variants[j].params) + ")";
+        throw InputError(configField(config, second) + ": " + what + "; remove one");
+      }
   // Terrains that differ only in what the label leaves out (extent, height scale, file type...)
   // keep readable, distinct labels.
   for (size_t i = 0; i < labels.size(); ++i)

@@ -1,6 +1,7 @@
 #pragma once
 // A run/sweep config (JSON). Its cases are the cartesian product of schemes x parameter values x
 // camera paths x terrains x resolutions.
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -30,8 +31,15 @@ struct ImageRequest {
 
 struct Config {
   std::string file;  // where it was read from (for messages)
+  // Line of each JSON pointer of the file (config/json_lines.h), so checks after parsing (duplicate
+  // entries in expandCases, the device) name file, line and field too; empty for a Config built in code.
+  std::map<std::string, int> lines;
   std::string name = "run";
   std::string device;  // "" = default (lavapipe where present)
+  // Where `device` was named when the config named it: "c.json:3: field '/device'"; "" when it is
+  // the default or the command line's (run --device clears it), so a device that matches nothing
+  // is reported against what named it (ContextOptions::deviceWhere).
+  std::string deviceWhere;
   std::vector<std::pair<int, int>> resolutions{{320, 180}};
   int grid = 32;
   std::vector<int> grids{32};  // "grid" or "grids": one case per grid (scale studies)
@@ -42,6 +50,9 @@ struct Config {
   double caseTimeoutS = 0;  // a case running longer fails with "timeout" (0 = no limit)
   std::vector<TerrainSpec> terrains;
   std::vector<std::string> paths;  // resolved file paths
+  // JSON pointer of each entry of `terrains` and `paths` ("/terrains/1", "/terrain/seed/2", "/paths/0")
+  // for messages about them; empty for a Config built in code.
+  std::vector<std::string> terrainFields, pathFields;
   std::vector<SchemeEntry> schemes;
   ImageRequest images;
   MeasureSpec measure;      // measurement passes (off unless "measure" is given)
@@ -77,5 +88,8 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
 // and parameters twice) are an InputError naming both.
 std::vector<Case> expandCases(const Config& config);
 std::string terrainLabel(const TerrainSpec& t);
+// "file:line: field '/ptr'" (config_reader.h's form) for a field of a parsed config; the line is
+// left out where it is not known (a Config built in code).
+std::string configField(const Config& config, const std::string& ptr);
 
 }  // namespace lb

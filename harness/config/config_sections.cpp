@@ -15,6 +15,7 @@ void parseNameSection(const ConfigReader& r, const json& j, Config& c) {
   if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos)
     r.fail("/name", "must be a non-empty name without '/', '\\' or spaces");
   if (j.contains("device")) c.device = r.string(j["device"], "/device");
+  if (!c.device.empty()) c.deviceWhere = configField(c, "/device");
 }
 
 void parseResolutionSection(const ConfigReader& r, const json& j, Config& c) {
@@ -74,10 +75,12 @@ std::vector<int> parsePathSection(const ConfigReader& r, const json& j, const st
       r.fail(ptr, e.what());
     }
     c.paths.push_back(path);
+    c.pathFields.push_back(ptr);
   };
   if (j.contains("path")) addPath(j["path"], "/path");
   if (j.contains("paths")) {
-    if (!j["paths"].is_array()) r.fail("/paths", "expected an array of CSV files");
+    if (!j["paths"].is_array() || j["paths"].empty())
+      r.fail("/paths", "expected a non-empty array of CSV files (or leave 'paths' out)");
     for (size_t i = 0; i < j["paths"].size(); ++i) addPath(j["paths"][i], "/paths/" + std::to_string(i));
   }
   if (c.paths.empty()) r.fail("", "no camera path: set 'paths' to a list of CSV files");

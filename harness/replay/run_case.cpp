@@ -89,6 +89,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   const Heightfield& terrain = *heldTerrain;
   const double loadS = secondsSince(t0);  // run.json costs.terrains: the terrain load alone
   result.terrainSource = terrain.source;  // the case file's terrain.source
+  result.terrainWidth = terrain.width;    // and terrain.samples
+  result.terrainHeight = terrain.height;
   CameraPath path = loadCameraPath(c.path);
   RenderSettings settings{c.width, c.height, c.grid, config.testSlowdown};
   ParamValues params = c.params;

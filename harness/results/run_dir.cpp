@@ -115,17 +115,38 @@ void writeAggregates(const std::string& dir, const json& context) {
   writeFileAtomic(dir + "/summary.json", summary.dump(2));
 }
 
-ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases) {
+ResumePlan planResume(const std::string& dir, std::vector<Case>& cases) {
   ResumePlan plan;
-  std::map<std::string, const Case*> byId;
-  for (auto& c : cases) byId[c.id] = &c;
-  for (auto& cf : readCaseFiles(dir, true)) {  // a stale case back in the config is kept again
+  std::vector<CaseFile> files = readCaseFiles(dir, true);  // a stale case back in the config is kept again
+  std::map<std::string, size_t> byId;
+  for (size_t i = 0; i < cases.size(); ++i) byId[cases[i].id] = i;
+  std::set<std::string> recordedIds;
+  for (auto& cf : files) recordedIds.insert(cf.id());
+  // A case with no file of its id takes the first file (by name) of its digest that is of no case's
+  // id and not taken yet: the same inputs under the id an earlier listing gave them.
+  std::map<std::string, size_t> byDigest;
+  for (size_t i = 0; i < cases.size(); ++i)
+    if (!recordedIds.count(cases[i].id)) byDigest.emplace(cases[i].digest, i);
+  for (auto& cf : files) {
+    if (byId.count(cf.id())) continue;
+    const json& d = cf.doc;
+    auto it = d.contains("digest") && d["digest"].is_string() ? byDigest.find(d["digest"].get<std::string>())
+                                                              : byDigest.end();
+    if (it == byDigest.end()) continue;
+    Case& c = cases[it->second];
+    plan.renamed.push_back(cf.id() + " (listed now as " + c.id + ")");
+    byId.erase(c.id);
+    c.id = cf.id();
+    byId[c.id] = it->second;
+    byDigest.erase(it);
+  }
+  for (auto& cf : files) {
     auto it = byId.find(cf.id());
     if (it == byId.end()) {
       plan.stale.push_back(cf.id());
       continue;
     }
-    const Case& c = *it->second;
+    const Case& c = cases[it->second];
     if (cf.doc.value("status", "") != "ok") continue;  // failed or skipped: run again
     std::string recorded =
         cf.doc.contains("digest") && cf.doc["digest"].is_string() ? cf.doc["digest"].get<std::string>() : "";
@@ -162,7 +183,7 @@ void checkToolVersion(const std::string& dir, const json& previous) {
 }
 
 ResumePlan checkResume(const std::string& dir, const json& previous, int shardIndex, int shardCount,
-                       const std::vector<Case>& cases, bool rerunChanged) {
+                       std::vector<Case>& cases, bool rerunChanged) {
   const std::string runJson = dir + "/run.json";
   checkToolVersion(dir, previous);
   int oldIndex = 0, oldCount = 1;
@@ -180,6 +201,11 @@ ResumePlan checkResume(const std::string& dir, const json& previous, int shardIn
                      " finished case(s) were run with other inputs:" + list(plan.changed) +
                      "\n(run again with --rerun-changed to run them again with the inputs of now)");
   for (auto& c : plan.changed) std::fprintf(stderr, "lodbench: rerunning changed case %s\n", c.c_str());
+  if (!plan.renamed.empty())
+    std::fprintf(stderr,
+                 "lodbench: %zu case(s) in %s keep the id they were recorded with (the same inputs: a parameter "
+                 "listed at its default is the same case as one left out):%s\n",
+                 plan.renamed.size(), dir.c_str(), list(plan.renamed).c_str());
   if (!plan.stale.empty())
     std::fprintf(stderr,
                  "lodbench: %zu stale case(s) in %s, no longer in the config (kept on disk, left out of run.json's "

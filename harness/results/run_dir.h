@@ -36,12 +36,19 @@ void writeAggregates(const std::string& dir, const nlohmann::json& context);
 
 // What a resumed run keeps. A finished ("ok") case file is reused only when its recorded input
 // digest equals the case's digest now; failed and skipped cases run again.
+//
+// A case file is the case of the same id, or else the case of the same digest: ids name the
+// parameters a config lists, digests every parameter with its resolved value, so a config that
+// now lists a parameter at its default (or no longer lists one it listed at its default) has the
+// same cases under other ids. Such a case takes the id it was recorded with (planResume renames it
+// in `cases`), so it is kept, not run again beside a stale copy of itself.
 struct ResumePlan {
   std::set<std::string> reuse;       // case ids kept as they are
   std::vector<std::string> changed;  // "<id>: <what changed>" for ok cases whose inputs changed
   std::vector<std::string> stale;    // ids of case files of no case of the config now (kept on disk)
+  std::vector<std::string> renamed;  // "<recorded id> (listed now as <id of the config>)"
 };
-ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases);
+ResumePlan planResume(const std::string& dir, std::vector<Case>& cases);
 
 // The checks `run` makes before reusing an existing directory, so that a sweep can grow: the same
 // tool version (checkToolVersion), the same shard, and (unless rerunChanged) no finished case whose
@@ -49,7 +56,7 @@ ResumePlan planResume(const std::string& dir, const std::vector<Case>& cases);
 // stale: kept, named on stderr, and listed by the caller in run.json. Throws InputError naming
 // the directory, the cases and what changed. The config itself may differ: the digests decide.
 ResumePlan checkResume(const std::string& dir, const nlohmann::json& previousRun, int shardIndex, int shardCount,
-                       const std::vector<Case>& cases, bool rerunChanged);
+                       std::vector<Case>& cases, bool rerunChanged);
 // A folder written by another tool version: an InputError saying which version wrote it and what to do.
 void checkToolVersion(const std::string& dir, const nlohmann::json& previousRun);
 // Resuming on another device or driver would mix two devices' timings in one run: an InputError.

@@ -17,6 +17,7 @@
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
+#include "terrain/generators.h"
 #include "version.h"
 #include "vk/context.h"
 #include "vk/device_identity.h"
@@ -310,6 +311,22 @@ json caseJson(const Case& c, const CaseResult& r) {
   for (auto& [k, v] : c.listedParams) listed[k] = v;
   if (r.matched.is_object() && !r.matched.value("param", "").empty())
     params[r.matched["param"]] = listed[r.matched["param"]] = r.matched["value"];
+  json terrain = {{"type", c.terrain.type},
+                  {"label", c.terrainLabel},
+                  {"file", c.terrain.file},
+                  // gdal without a config extent: the one derived from the file, once read
+                  {"extent", c.terrain.extent > 0             ? json(c.terrain.extent)
+                             : r.terrainSource.driver.empty() ? json(nullptr)
+                                                              : json(r.terrainSource.extent)},
+                  {"height_scale", c.terrain.heightScale},
+                  // The grid of samples the case ran on, after a gdal window and overview; null
+                  // when the case failed before the terrain was loaded.
+                  {"samples", r.terrainWidth > 0 ? json({r.terrainWidth, r.terrainHeight}) : json(nullptr)},
+                  {"source", sourceJson(c, r.terrainSource)}};
+  if (c.terrain.type == "procedural" || isGeneratedTerrain(c.terrain.type)) {  // file terrains have neither
+    terrain["size"] = c.terrain.size;
+    terrain["seed"] = c.terrain.seed;
+  }
   return {{"schema_version", kSchemaVersion},
           {"case_id", c.id},
           {"digest", c.digest},
@@ -317,18 +334,7 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"scheme", c.scheme},
           {"params", params},
           {"params_listed", listed},
-          {"terrain",
-           {{"type", c.terrain.type},
-            {"label", c.terrainLabel},
-            {"file", c.terrain.file},
-            {"size", c.terrain.size},
-            {"seed", c.terrain.seed},
-            // gdal without a config extent: the one derived from the file, once read
-            {"extent", c.terrain.extent > 0             ? json(c.terrain.extent)
-                       : r.terrainSource.driver.empty() ? json(nullptr)
-                                                        : json(r.terrainSource.extent)},
-            {"height_scale", c.terrain.heightScale},
-            {"source", sourceJson(c, r.terrainSource)}}},
+          {"terrain", terrain},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
           {"grid", c.grid},

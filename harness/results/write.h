@@ -31,6 +31,8 @@ struct CaseResult {
   std::map<std::string, std::vector<FrameResult>> modeFrames;
   nlohmann::json calibration;   // clock-control calibration (null when off)
   TerrainSource terrainSource;  // what the case's terrain was read from (driver "": generated or never read)
+  // Samples of the terrain the case ran on (after a gdal window and overview); 0 = never loaded.
+  int terrainWidth = 0, terrainHeight = 0;
   // Stateful GPU LOD (replay/lod_replay.h): converge_updates, lod_converged and the state's size
   // facts, merged into the case summary; null for every other scheme.
   nlohmann::json lodState;

@@ -76,7 +76,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
     plan = checkResume(totals.dir, previous, options.shardIndex, options.shardCount, cases, options.rerunChanged);
   }
   Context ctx;
-  createContext(ctx, {config.device, options.validation});
+  createContext(ctx, {config.device, options.validation, config.deviceWhere});
   std::unique_ptr<Context, void (*)(Context*)> guard(&ctx, [](Context* c) { destroyContext(*c); });
   // Every terrain of this shard against the device's limits, before anything is written.
   const DeviceLimits limits = deviceLimits(ctx.physicalDevice);
@@ -134,7 +134,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       if (r.reason.find("VK_ERROR_DEVICE_LOST") != std::string::npos) {
         // A lost device is unusable: start a new one for the remaining cases.
         destroyContext(ctx);
-        createContext(ctx, {config.device, options.validation});
+        createContext(ctx, {config.device, options.validation, config.deviceWhere});
       }
     }
     progress.endCase(r.status == "ok");

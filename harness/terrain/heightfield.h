@@ -69,7 +69,7 @@ struct TerrainSpec {
 };
 
 // Largest |height| accepted, in world units after heightScale. Earth's relief spans -11 km to
-// +8.8 km, so 1e5 leaves 5x headroom for metres (or a 10x exaggeration of real relief), while
+// +8.8 km (19.8 km), so 1e5 is 5x that relief in metres (the message and README say so), while
 // float32 still resolves 2^-24 * 1e5 ~ 0.006 units there: the error pass, the eye clamp and the
 // projections stay meaningful. Beyond it (e.g. r32f values of 1e30) the terrain leaves every
 // frustum or overflows squared distances, and the metrics would report a perfect image.

@@ -198,8 +198,8 @@ void checkHeights(const TerrainSpec& spec, const Heightfield& hf) {
     if (!(std::fabs(hf.h[i]) <= kMaxAbsHeight))
       throw InputError(spec.file + ": sample (" + std::to_string(i % size_t(hf.width)) + ", " +
                        std::to_string(i / size_t(hf.width)) + ") is " + std::to_string(hf.h[i]) +
-                       " after height_scale; heights must lie within +-1e5 (float32 precision and "
-                       "10x Earth's relief in metres): check the file type and height_scale");
+                       " after height_scale; heights must lie within +-1e5 (float32 precision, and 5x Earth's relief "
+                       "of -11 km to +8.8 km in metres): check the file type and height_scale");
 }
 
 // The case file's "terrain.source" for the built-in readers: no CRS, one band, the config's extent.

@@ -166,7 +166,8 @@ std::vector<DeviceCandidate> listDevices() {
   return c;
 }
 
-static int choose(const std::vector<DeviceCandidate>& cands, const std::string& want, std::string& why) {
+static int choose(const std::vector<DeviceCandidate>& cands, const std::string& want, const std::string& where,
+                  std::string& why) {
   auto lower = [](std::string s) {
     for (auto& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     return s;
@@ -181,7 +182,9 @@ static int choose(const std::vector<DeviceCandidate>& cands, const std::string& 
   if (want.empty())
     for (auto& c : cands)
       if (c.suitable) return c.index;
-  why = want.empty() ? "no suitable Vulkan device" : "no suitable Vulkan device matches --device '" + want + "'";
+  why = want.empty()    ? "no suitable Vulkan device"
+        : where.empty() ? "no suitable Vulkan device matches --device '" + want + "'"
+                        : where + ": no suitable Vulkan device matches '" + want + "'";
   for (auto& c : cands)
     why += "\n  [" + std::to_string(c.index) + "] " + c.name + ": " + (c.suitable ? "suitable" : c.rejectReason);
   if (cands.empty()) why += " (no devices at all: apt-get install mesa-vulkan-drivers for lavapipe)";
@@ -210,7 +213,7 @@ void checkContextOptions(const ContextOptions& options) {
   requireLayerIfAsked(options);
   if (options.device.empty()) return;
   std::string why;
-  if (choose(listDevices(), options.device, why) < 0) throw InputError(why);
+  if (choose(listDevices(), options.device, options.deviceWhere, why) < 0) throw InputError(why);
 }
 
 void createContext(Context& ctx, const ContextOptions& options) {
@@ -234,7 +237,7 @@ void createContext(Context& ctx, const ContextOptions& options) {
   std::vector<VkPhysicalDevice> pds;
   ctx.candidates = examine(ctx.instance, pds);
   std::string why;
-  int idx = choose(ctx.candidates, options.device, why);
+  int idx = choose(ctx.candidates, options.device, options.deviceWhere, why);
   if (idx < 0) {
     destroyContext(ctx);
     // A device the user named that does not exist is bad input; none at all is the machine's problem.

@@ -16,6 +16,9 @@ namespace lb {
 struct ContextOptions {
   std::string device;       // "" = lavapipe if present else first suitable; digits = index
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation (also env LODBENCH_VALIDATION=1)
+  // What named `device`, for the message when it matches no suitable device: "" = the --device
+  // flag; else e.g. "c.json:3: field '/device'" (Config::deviceWhere).
+  std::string deviceWhere;
 };
 
 struct DeviceCandidate {
