@@ -23,6 +23,7 @@
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "render/terrain_fit.h"
+#include "replay/lod_replay.h"
 #include "replay/measure.h"
 #include "report/report.h"
 #include "results/gbench_json.h"
@@ -68,6 +69,7 @@ struct RenderArgs {
   std::vector<int> window;
   bool sizeOrSeedGiven = false;
   unsigned seed = 1;
+  int warmup = Config{}.warmupFrames;              // a stateful LOD's warm-up updates, as a run's default
   double fps = 30, extent = -1, heightScale = -1;  // extent < 0: 1000, or gdal's from the file
   bool wireframe = false, heatmap = false, error = false, cracks = false, validation = false;
 };
@@ -153,7 +155,17 @@ static int renderCmd(const RenderArgs& a) {
   {
     Renderer renderer(ctx, terrain, {a.width, a.height, a.grid});
     renderer.setScheme(*scheme, given);
-    CameraPose pose = samplePose(path, a.fps, a.frame, terrain);
+    auto poseAt = [&](int f) { return samplePose(path, a.fps, f, terrain); };
+    CameraPose pose = poseAt(a.frame);
+    // A stateful LOD (cbt) draws what the run's frame drew: its history from the path's first pose
+    // (converge, warm up, the updates of frames 0 ... frame), frozen there (replay/lod_replay.h).
+    std::unique_ptr<FrozenLod> frozen;
+    if (renderer.statefulLod()) {
+      startLod(renderer, poseAt(0), a.warmup);
+      LodReplay replay(renderer, poseAt, {});
+      replay.advanceTo(a.frame);
+      frozen = std::make_unique<FrozenLod>(renderer);
+    }
     RenderMode mode = a.wireframe ? RenderMode::Wireframe : a.heatmap ? RenderMode::Heatmap : RenderMode::Shaded;
     FrameResult fr;
     renderer.setSky(true);  // an image for people; the measurement passes below need the magenta
@@ -170,7 +182,14 @@ static int renderCmd(const RenderArgs& a) {
                        nullptr, /*keepPixels=*/true);  // the error map itself, on either measurement path
       px = a.error ? errorImage(m.errorMap, a.width, a.height).px
                    : crackMaskImage({a.width, a.height, px}, m.crackMask).px;  // over the sky-shaded frame
-      for (auto& [k, v] : m.values) std::printf("%s = %g\n", k.c_str(), v);
+      for (auto& [k, v] : m.values) {
+        auto why = m.unavailable.find(k);
+        if (!std::isnan(v))
+          std::printf("%s = %g\n", k.c_str(), v);
+        else
+          std::printf("%s = null (%s)\n", k.c_str(),
+                      why != m.unavailable.end() ? why->second.c_str() : "not measured on this frame");
+      }
     }
     writePng(a.out, a.width, a.height, px);
     std::printf("%s: %s frame %d on %s: %llu patches, %llu triangles, %.3f ms GPU\n", a.out.c_str(), a.scheme.c_str(),
@@ -260,6 +279,12 @@ int main(int argc, char** argv) {
   render->add_option("--fps", ra.fps, "Path sampling rate (frames per second)")
       ->capture_default_str()
       ->check(finite(1, 1000));
+  render
+      ->add_option("--warmup", ra.warmup,
+                   "Stateful schemes (cbt): warm-up updates at the first pose before the path, as the "
+                   "run's warmup_frames")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
   render->add_option("--out", ra.out, "Output PNG")->capture_default_str();
   render->add_option("--width", ra.width, "Image width")->capture_default_str()->check(CLI::Range(16, 8192));
   render->add_option("--height", ra.height, "Image height")->capture_default_str()->check(CLI::Range(16, 8192));

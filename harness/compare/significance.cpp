@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "random.h"
 #include "stats.h"
 
 namespace lb {
@@ -44,20 +45,6 @@ double median(std::vector<double> values) {
 }
 
 namespace {
-
-// splitmix64 (Steele, Lea, Flood 2014): fully specified, unlike std::uniform_int_distribution,
-// whose output differs between standard libraries.
-struct SplitMix64 {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  // Modulo bias for n of a few thousand samples is below 1e-15: irrelevant here.
-  size_t below(size_t n) { return size_t(next() % n); }
-};
 
 // Median by selection rather than a full sort (the bootstrap takes thousands); the same value as
 // percentile(v, 50), whose midpoint is hi - (hi - lo) * 0.5.

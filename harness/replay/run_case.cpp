@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -100,6 +101,13 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     result.matched = {
         {"metric", config.match.metric}, {"target", config.match.value}, {"param", m.param},        {"value", m.value},
         {"achieved", m.achieved},        {"evaluations", m.evaluations}, {"reachable", m.reachable}};
+    json trials = json::array();  // every evaluation, those that could not run with their reason
+    for (const MatchTrial& t : m.trials) {
+      json tj = {{"value", t.value}, {"achieved", std::isnan(t.achieved) ? json() : json(t.achieved)}};
+      if (!t.reason.empty()) tj["reason"] = t.reason;
+      trials.push_back(tj);
+    }
+    result.matched["trials"] = trials;
   }
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, params);

@@ -1,0 +1,75 @@
+#pragma once
+// The answer with its uncertainty: on each workload (a terrain and a camera path) every scheme's
+// cost as a ratio to the workload's cheapest with a bootstrap interval, and across workloads each
+// scheme's geometric-mean ratio with its interval, the workloads it wins and those it ties.
+// Overlapping intervals are a tie, never a win (docs/results-format.md, verdict.json).
+//
+// Method (tests/test_suite_verdict.cpp checks it on synthetic timings with known answers): a
+// repetition is the unit of evidence, as in `compare` (frames of one repetition share its clock
+// and caches, and a path's frames are correlated in time, so they are not independent samples).
+// A scheme's cost on a workload is the geometric mean over its repetitions of the repetition's
+// mean GPU ms over the frames; the ratio to the workload's cheapest and its interval come from
+// Welch's t on the logs of the repetition means (compare/significance.h roundTest). Across
+// workloads, a scheme's geometric-mean ratio is exp of the mean of its log ratios, with a t
+// interval whose variance sums the workloads' (independent runs) and whose degrees of freedom
+// follow Welch-Satterthwaite. One repetition gives no interval: then nothing wins.
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace lb {
+
+// One scheme's timings on one workload: GPU ms per repetition, per frame (the same frames in every
+// repetition and for every scheme of the workload). `missing` says why there are none (failed,
+// target unreachable); then `reps` is empty.
+struct SchemeTimings {
+  std::string scheme;
+  std::vector<std::vector<double>> reps;
+  std::string missing;
+};
+
+struct Workload {
+  std::string id;  // terrain x path, as the run names them
+  std::vector<SchemeTimings> schemes;
+};
+
+// NaN bounds: no interval (fewer than two repetitions on a side).
+struct Interval {
+  double value = 0, lo = 0, hi = 0;
+};
+
+struct WorkloadResult {
+  std::string id;
+  std::string cheapest;                   // by the point estimate
+  std::map<std::string, double> costMs;   // point estimates
+  std::map<std::string, Interval> ratio;  // to the cheapest (its own: exactly 1)
+  std::map<std::string, std::string> missing;
+  std::vector<std::string> tied;  // the cheapest and every scheme whose interval reaches 1 (or has none)
+  bool verdict() const { return tied.size() == 1; }
+};
+
+struct SchemeResult {
+  std::string scheme;
+  Interval geomean;   // of its ratios over the workloads it ran
+  int workloads = 0;  // with timings
+  int wins = 0;       // cheapest, every other interval above 1
+  int ties = 0;       // cheapest or within the interval of it, with another scheme
+  std::vector<std::string> missingIn;
+};
+
+struct SuiteVerdict {
+  double confidence = 0.95;
+  std::vector<WorkloadResult> workloads;
+  std::vector<SchemeResult> schemes;  // by geometric-mean ratio, lowest first
+};
+
+// Throws std::invalid_argument when a scheme's repetitions differ in length or a workload's
+// schemes have different frame counts.
+SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confidence = 0.95);
+
+// verdict.json's content (docs/results-format.md).
+nlohmann::json verdictJson(const SuiteVerdict& v);
+
+}  // namespace lb

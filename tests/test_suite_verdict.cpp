@@ -1,0 +1,131 @@
+// The verdict's interval method (report/suite_verdict.h) on synthetic timings with known answers:
+// a 95 % interval covers the true ratio about 95 % of the time, an exact copy ties, a scheme twice
+// as slow loses with an interval that excludes 1, and the geometric mean over workloads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "compare/suite_verdict.h"
+#include "random.h"
+
+using namespace lb;
+
+namespace {
+
+// Uniform in (0, 1) and a standard normal from the project's fully specified stream.
+double uniform(SplitMix64& rng) {
+  return (double(rng.next() >> 11) + 0.5) / 9007199254740992.0;
+}
+double normal(SplitMix64& rng) {
+  return std::sqrt(-2 * std::log(uniform(rng))) * std::cos(6.283185307179586 * uniform(rng));
+}
+
+// A path whose frames cost `base` x a smooth per-frame profile (the same for every scheme), each
+// repetition scaled by its own clock factor (sd `repSd`) and each frame by noise (sd `frameSd`).
+SchemeTimings timings(const std::string& name, double base, int reps, int frames, double repSd, double frameSd,
+                      SplitMix64& rng) {
+  SchemeTimings s{name, {}, ""};
+  for (int r = 0; r < reps; ++r) {
+    const double clock = std::exp(repSd * normal(rng));
+    std::vector<double> rep;
+    for (int f = 0; f < frames; ++f) {
+      const double profile = 1.0 + 0.5 * std::sin(f * 0.05);
+      rep.push_back(base * profile * clock * std::exp(frameSd * normal(rng)));
+    }
+    s.reps.push_back(rep);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(SuiteVerdict, IntervalCoversTheTrueRatioAtItsStatedRate) {
+  // 200 experiments, each a fresh draw of A (1 ms) and B (1.3 ms) timings: the 95 % interval of
+  // B's ratio should hold 1.3 in about 95 % of them (binomial sd 1.5 %; 88 % is 4.6 sd below).
+  SplitMix64 rng{42};
+  int covered = 0, excludesOne = 0;
+  const int experiments = 200;
+  for (int e = 0; e < experiments; ++e) {
+    Workload w{"synthetic", {timings("A", 1.0, 3, 120, 0.02, 0.05, rng), timings("B", 1.3, 3, 120, 0.02, 0.05, rng)}};
+    SuiteVerdict v = suiteVerdict({w}, 0.95);
+    const Interval& r = v.workloads[0].ratio.at("B");
+    covered += r.lo <= 1.3 && 1.3 <= r.hi;
+    excludesOne += r.lo > 1.0;
+  }
+  std::printf("[suite verdict] true ratio 1.3 inside the 95%% interval in %d of %d experiments\n", covered,
+              experiments);
+  EXPECT_GE(covered, int(0.88 * experiments));
+  EXPECT_LE(covered, experiments);
+  EXPECT_GE(excludesOne, int(0.95 * experiments)) << "a 30 % difference against 2 % clock noise is rarely a tie";
+}
+
+TEST(SuiteVerdict, AnExactCopyTiesAndADoubledCostLoses) {
+  SplitMix64 rng{7};
+  SchemeTimings sphere = timings("sphere", 1.0, 3, 100, 0.02, 0.05, rng);
+  SchemeTimings copy = sphere;  // the same draws, as a registered exact copy measured alike
+  copy.scheme = "sphere-copy";
+  // An independent measurement of the same scheme: other noise, the same cost.
+  SchemeTimings again = timings("sphere-again", 1.0, 3, 100, 0.02, 0.05, rng);
+  SchemeTimings twice = sphere;  // every triangle drawn twice: twice the cost
+  twice.scheme = "sphere-twice";
+  for (auto& rep : twice.reps)
+    for (double& t : rep) t *= 2;
+  SuiteVerdict v = suiteVerdict({{"w", {sphere, copy, again, twice}}});
+  const WorkloadResult& w = v.workloads[0];
+  EXPECT_FALSE(w.verdict()) << "identical schemes must tie";
+  auto tied = [&](const std::string& s) { return std::count(w.tied.begin(), w.tied.end(), s) == 1; };
+  EXPECT_TRUE(tied("sphere-copy") && tied("sphere") && tied("sphere-again"));
+  EXPECT_FALSE(tied("sphere-twice"));
+  const Interval& t = w.ratio.at("sphere-twice");
+  EXPECT_GT(t.lo, 1.0);
+  EXPECT_LE(t.lo, 2.0 * 1.1);
+  EXPECT_NEAR(t.value, 2.0, 0.1);
+  nlohmann::json j = verdictJson(v);
+  EXPECT_EQ(j["workloads"][0]["verdict"], "no verdict");
+  for (const SchemeResult& s : v.schemes) {
+    if (s.scheme == "sphere-twice") {
+      EXPECT_EQ(s.wins + s.ties, 0);
+    }
+  }
+}
+
+TEST(SuiteVerdict, GeometricMeanOverWorkloadsWinsAndMissingSchemes) {
+  SplitMix64 rng{11};
+  // A wins the first workload by 2x, B the second by 4x; C runs only the first, at 3x.
+  Workload w1{"flat_flyover",
+              {timings("A", 1.0, 3, 60, 0.01, 0.02, rng), timings("B", 2.0, 3, 60, 0.01, 0.02, rng),
+               timings("C", 3.0, 3, 60, 0.01, 0.02, rng)}};
+  Workload w2{"canyon_grazing",
+              {timings("A", 4.0, 3, 60, 0.01, 0.02, rng), timings("B", 1.0, 3, 60, 0.01, 0.02, rng),
+               SchemeTimings{"C", {}, "target unreachable: err_p95_px 1.52 at the finest level"}}};
+  SuiteVerdict v = suiteVerdict({w1, w2});
+  ASSERT_EQ(v.workloads.size(), 2u);
+  EXPECT_EQ(v.workloads[0].cheapest, "A");
+  EXPECT_EQ(v.workloads[1].cheapest, "B");
+  EXPECT_TRUE(v.workloads[0].verdict() && v.workloads[1].verdict());
+  std::map<std::string, SchemeResult> by;
+  for (const SchemeResult& s : v.schemes) by[s.scheme] = s;
+  // A: ratios 1 and 4 -> 2; B: 2 and 1 -> sqrt 2; C: 3 over the one workload it ran.
+  EXPECT_NEAR(by["A"].geomean.value, 2.0, 0.05);
+  EXPECT_NEAR(by["B"].geomean.value, std::sqrt(2.0), 0.05);
+  EXPECT_NEAR(by["C"].geomean.value, 3.0, 0.1);
+  EXPECT_LE(by["B"].geomean.lo, by["B"].geomean.value);
+  EXPECT_GE(by["B"].geomean.hi, by["B"].geomean.value);
+  EXPECT_EQ(by["A"].wins, 1);
+  EXPECT_EQ(by["B"].wins, 1);
+  EXPECT_EQ(by["C"].workloads, 1);
+  ASSERT_EQ(by["C"].missingIn.size(), 1u);
+  EXPECT_EQ(v.workloads[1].missing.at("C"), "target unreachable: err_p95_px 1.52 at the finest level");
+  EXPECT_EQ(v.schemes.front().scheme, "B") << "ranked by geometric-mean ratio";
+  // The same inputs and seed give the same intervals.
+  SuiteVerdict again = suiteVerdict({w1, w2});
+  EXPECT_EQ(verdictJson(v).dump(), verdictJson(again).dump());
+}
+
+TEST(SuiteVerdict, RefusesRaggedTimings) {
+  SchemeTimings a{"A", {{1, 1, 1}, {1, 1}}, ""};
+  EXPECT_THROW(suiteVerdict({{"w", {a}}}), std::invalid_argument);
+  SchemeTimings b{"B", {{1, 1, 1}}, ""}, c{"C", {{1, 1}}, ""};
+  EXPECT_THROW(suiteVerdict({{"w", {b, c}}}), std::invalid_argument);
+}
