@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
+#include "cli_run.h"
 #include "compare/suite_verdict.h"
 #include "random.h"
 
@@ -128,4 +131,47 @@ TEST(SuiteVerdict, RefusesRaggedTimings) {
   EXPECT_THROW(suiteVerdict({{"w", {a}}}), std::invalid_argument);
   SchemeTimings b{"B", {{1, 1, 1}}, ""}, c{"C", {{1, 1}}, ""};
   EXPECT_THROW(suiteVerdict({{"w", {b, c}}}), std::invalid_argument);
+}
+
+// A real run through the CLI: 3 repetitions on two paths, verdict.json with an interval for every
+// scheme on every workload, and the wins and ties adding up.
+TEST(SuiteVerdict, VerdictCommandWritesVerdictJsonOfARun) {
+  namespace fs = std::filesystem;
+  const std::string dir = lb::test::freshDir("verdict");
+  fs::create_directories(dir);
+  const std::string cfg = dir + "/verdict.json.in";
+  nlohmann::json c = lb::test::readJson(lb::test::kTinyConfig);
+  c["name"] = "verdict";
+  c["repetitions"] = 3;
+  c["max_frames"] = 12;
+  c["paths"] = {std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/flyover.csv",
+                std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/lowalt.csv"};
+  std::ofstream(cfg) << c.dump(2);
+  const std::string run = dir + "/run";
+  lb::test::CliOut r = lb::test::lodbench("run " + cfg + " --out " + run + " -q");
+  ASSERT_EQ(r.code, 0) << r.text;
+  lb::test::CliOut v = lb::test::lodbench("verdict " + run);
+  ASSERT_EQ(v.code, 0) << v.text;
+  EXPECT_NE(v.text.find("| uniform |"), std::string::npos) << v.text;
+  const nlohmann::json j = lb::test::readJson(run + "/verdict.json");
+  ASSERT_EQ(j["workloads"].size(), 2u) << j.dump(2);
+  int winsAndTies = 0;
+  for (const auto& w : j["workloads"]) {
+    EXPECT_TRUE(w["no_interval"].empty());
+    for (const char* s : {"uniform", "sphere"}) {
+      const auto& r = w["ratio"][s];
+      ASSERT_TRUE(r["lo"].is_number()) << w.dump(2);
+      EXPECT_LE(r["lo"].get<double>(), r["value"].get<double>());
+      EXPECT_GE(r["hi"].get<double>(), r["value"].get<double>());
+    }
+    EXPECT_EQ(w["ratio"][w["cheapest"].get<std::string>()]["value"], 1.0);
+  }
+  for (const auto& s : j["schemes"]) {
+    EXPECT_EQ(s["workloads"], 2);
+    winsAndTies += s["wins"].get<int>() + s["ties"].get<int>();
+    EXPECT_TRUE(s["geomean_ratio"]["lo"].is_number());
+  }
+  EXPECT_GE(winsAndTies, 2) << "every workload has a winner or a tie";
+  lb::test::CliOut bad = lb::test::lodbench("verdict " + dir + "/nothing");
+  EXPECT_EQ(bad.code, 2) << bad.text;
 }

@@ -15,6 +15,7 @@
 #include "cli/load_bench.h"
 #include "cli/probe_command.h"
 #include "compare/commands.h"
+#include "compare/suite_verdict.h"
 #include "config/config.h"
 #include "did_you_mean.h"
 #include "error.h"
@@ -365,6 +366,14 @@ int main(int argc, char** argv) {
     sub->add_option("--json", vf.json, "Write the verdict as JSON");
     sub->add_option("--md", vf.md, "Write the verdict as Markdown");
   }
+  auto* verdict = app.add_subcommand(
+      "verdict", "Each scheme's cost ratio to every workload's cheapest with intervals: <run-dir>/verdict.json");
+  std::vector<std::string> verdictDirs;
+  double verdictConfidence = 0.95;
+  verdict->add_option("runs", verdictDirs, "Run directories (each gets its own verdict.json)")->required();
+  verdict->add_option("--confidence", verdictConfidence, "Interval confidence")
+      ->capture_default_str()
+      ->check(finite(0.5, 0.999));
   auto* gbench = app.add_subcommand("gbench", "Write <run-dir>/gbench.json in Google Benchmark's JSON schema");
   std::string gbenchDir;
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
@@ -450,6 +459,7 @@ int main(int argc, char** argv) {
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
     if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
+    if (*verdict) return verdictCommand(verdictDirs, verdictConfidence);
     if (*ab) return abCommand(abo, co, vf);
     if (*probe) return probeCommand(po);
     if (*loadBench) return loadBenchCommand(lbo);

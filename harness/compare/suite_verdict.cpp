@@ -2,9 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
 #include <stdexcept>
 
+#include "compare/run_data.h"
 #include "compare/significance.h"
+#include "results/write.h"
 
 namespace lb {
 namespace {
@@ -92,6 +98,7 @@ SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confide
         continue;
       }
       logs[s.scheme] = logStats(logRepMeans(s));
+      if (s.reps.size() < 2) res.noInterval.push_back(s.scheme);
       res.costMs[s.scheme] = std::exp(logs[s.scheme].mean);
     }
     for (const auto& [name, cost] : res.costMs)
@@ -164,6 +171,7 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
                            : w.verdict()      ? w.cheapest
                                               : "no verdict"},
                {"tied", w.tied},
+               {"no_interval", w.noInterval},
                {"cost_ms", w.costMs},
                {"ratio", r},
                {"missing", w.missing}};
@@ -180,6 +188,101 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
   out["workloads"] = ws;
   out["schemes"] = ss;
   return out;
+}
+
+namespace {
+
+std::string paramsLabel(const nlohmann::json& listed) {
+  std::string out;
+  for (const auto& [k, v] : listed.items()) out += (out.empty() ? "" : ",") + k + "=" + v.dump();
+  return out.empty() ? "defaults" : out;
+}
+
+std::string workloadId(const CaseData& c) {
+  std::string path = std::filesystem::path(c.path).stem().string();
+  return (c.terrain.empty() ? "terrain" : c.terrain) + "_" + path + "_" + std::to_string(c.width) + "x" +
+         std::to_string(c.height);
+}
+
+std::vector<std::vector<double>> repetitions(const nlohmann::json& frames) {
+  std::vector<std::vector<double>> reps;
+  int last = -1;
+  for (const auto& f : frames) {
+    if (!f.is_object() || !f.contains("gpu_ms") || !f["gpu_ms"].is_number() || !f.contains("frame")) continue;
+    const int frame = f["frame"].get<int>();
+    if (reps.empty() || frame <= last) reps.emplace_back();
+    reps.back().push_back(f["gpu_ms"].get<double>());
+    last = frame;
+  }
+  return reps;
+}
+
+}  // namespace
+
+std::vector<Workload> runWorkloads(const RunData& run) {
+  // Case ids sort by scheme first; keep the configs' order of workloads by first appearance.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const CaseData*>> by;
+  for (const auto& [id, c] : run.cases) {
+    const std::string w = workloadId(c);
+    if (!by.count(w)) order.push_back(w);
+    by[w].push_back(&c);
+  }
+  std::vector<Workload> out;
+  for (const std::string& w : order) {
+    Workload wl{w, {}};
+    std::map<std::string, int> perScheme;
+    for (const CaseData* c : by[w]) ++perScheme[c->scheme];
+    for (const CaseData* c : by[w]) {
+      SchemeTimings s;
+      s.scheme = perScheme[c->scheme] > 1 ? c->scheme + "(" + paramsLabel(c->listedParams) + ")" : c->scheme;
+      if (c->status != "ok") {
+        s.missing = c->status + (c->reason.empty() ? "" : ": " + c->reason);
+      } else if (c->matched.is_object() && c->matched.value("reachable", true) == false) {
+        s.missing = "target unreachable: closest " + c->matched.value("param", std::string("value")) + " " +
+                    c->matched["value"].dump() + " reached " + c->matched["achieved"].dump();
+      } else {
+        s.reps = repetitions(c->frames);
+        if (s.reps.empty()) s.missing = "no gpu_ms in the case's frames";
+      }
+      wl.schemes.push_back(s);
+    }
+    out.push_back(wl);
+  }
+  return out;
+}
+
+int verdictCommand(const std::vector<std::string>& runDirs, double confidence) {
+  for (const std::string& dir : runDirs) {
+    RunData run = loadRun(dir);
+    SuiteVerdict v = suiteVerdict(runWorkloads(run), confidence);
+    nlohmann::json j = verdictJson(v);
+    j["run_dir"] = dir;
+    j["context"] = {{"device", run.context.value("device", "")}, {"driver", run.context.value("driver", "")}};
+    const std::string file = (std::filesystem::path(dir) / "verdict.json").string();
+    writeFileAtomic(file, j.dump(2) + "\n");
+    std::printf("%s\n", file.c_str());
+    std::printf("| scheme | geometric-mean ratio [%g %% interval] | workloads | wins | ties | missing |\n",
+                100 * confidence);
+    std::printf("|---|---|---:|---:|---:|---:|\n");
+    for (const SchemeResult& s : v.schemes) {
+      std::string geo = std::isnan(s.geomean.value) ? "-" : std::to_string(s.geomean.value).substr(0, 5);
+      if (!std::isnan(s.geomean.lo))
+        geo +=
+            " [" + std::to_string(s.geomean.lo).substr(0, 5) + ", " + std::to_string(s.geomean.hi).substr(0, 5) + "]";
+      std::printf("| %s | %s | %d | %d | %d | %zu |\n", s.scheme.c_str(), geo.c_str(), s.workloads, s.wins, s.ties,
+                  s.missingIn.size());
+    }
+    for (const WorkloadResult& w : v.workloads) {
+      std::string what = w.cheapest.empty() ? "no scheme ran"
+                         : w.verdict()      ? w.cheapest + " cheapest, every other interval above 1"
+                                            : "no verdict: " + std::to_string(w.tied.size()) + " schemes tie";
+      if (!w.noInterval.empty())
+        what += " (" + std::to_string(w.noInterval.size()) + " with fewer than 2 repetitions: no interval)";
+      std::printf("%s: %s\n", w.id.c_str(), what.c_str());
+    }
+  }
+  return 0;
 }
 
 }  // namespace lb

@@ -46,7 +46,8 @@ struct WorkloadResult {
   std::map<std::string, double> costMs;   // point estimates
   std::map<std::string, Interval> ratio;  // to the cheapest (its own: exactly 1)
   std::map<std::string, std::string> missing;
-  std::vector<std::string> tied;  // the cheapest and every scheme whose interval reaches 1 (or has none)
+  std::vector<std::string> tied;        // the cheapest and every scheme whose interval reaches 1 (or has none)
+  std::vector<std::string> noInterval;  // schemes (or the cheapest) with fewer than 2 repetitions
   bool verdict() const { return tied.size() == 1; }
 };
 
@@ -71,5 +72,17 @@ SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confide
 
 // verdict.json's content (docs/results-format.md).
 nlohmann::json verdictJson(const SuiteVerdict& v);
+
+struct RunData;
+// A run's workloads: its cases grouped by terrain, path and resolution, in the run's order. A
+// scheme is named by its scheme name, or its case label (scheme and listed parameters) where the
+// workload holds several cases of it. Timings: each case's `gpu_ms` split into repetitions (the
+// frame index starts again). Missing: a case not ok (its status and reason), or a matched case
+// whose target was unreachable (the closest value tried and what it reached).
+std::vector<Workload> runWorkloads(const RunData& run);
+
+// `lodbench verdict RUN-DIR...`: writes RUN-DIR/verdict.json for each run and prints its table;
+// returns 0, or throws InputError for a directory that is not a run.
+int verdictCommand(const std::vector<std::string>& runDirs, double confidence);
 
 }  // namespace lb
