@@ -69,6 +69,13 @@ json measurementInputs(const Config& c) {
         {"drift_limit", c.timing.driftLimit},
         {"min_load_s", c.timing.minLoadS},
         {"when", c.timing.calibrateSet ? "always" : "on a device that is not a CPU rasterizer"}};
+  // Energy windows (replay/energy_pass.h): named only when not the default, so digests of earlier
+  // sweeps still match.
+  const TimingSpec defaults;
+  if (!c.timing.energy)
+    j["timing"]["energy"] = false;
+  else if (c.timing.energyWindowS != defaults.energyWindowS || c.timing.energyRounds != defaults.energyRounds)
+    j["timing"]["energy"] = {{"window_s", c.timing.energyWindowS}, {"rounds", c.timing.energyRounds}};
   if (c.match.on())
     j["match"] = {{"metric", c.match.metric},
                   {"value", c.match.value},

@@ -244,7 +244,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   r.onlyKeys(j, "", {"name",     "device",        "resolution", "resolutions", "grid",           "grids",
                      "fps",      "warmup_frames", "max_frames", "repetitions", "case_timeout_s", "terrain",
                      "terrains", "path",          "paths",      "schemes",     "images",         "measure",
-                     "match",    "description",   "timing",     "calibration"});
+                     "match",    "description",   "timing",     "calibration", "energy"});
   Config c;
   c.file = file;
   c.lines = r.lines;
@@ -259,6 +259,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   parseImageSection(r, j, pathFrames, c);
   parseTimingSection(r, j, c);
   parseCalibrationSection(r, j, c);
+  parseEnergySection(r, j, c);
   parseMeasureSection(r, j, c);
   parseMatchSection(r, j, c);
   return c;

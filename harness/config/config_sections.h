@@ -31,6 +31,7 @@ void parseSchemeSection(const ConfigReader& r, const nlohmann::json& j, Config& 
 // config_sections_timing.cpp
 void parseTimingSection(const ConfigReader& r, const nlohmann::json& j, Config& c);       // timing modes
 void parseCalibrationSection(const ConfigReader& r, const nlohmann::json& j, Config& c);  // clock control
+void parseEnergySection(const ConfigReader& r, const nlohmann::json& j, Config& c);       // energy windows
 void parseMeasureSection(const ConfigReader& r, const nlohmann::json& j, Config& c);
 void parseMatchSection(const ConfigReader& r, const nlohmann::json& j, Config& c);
 

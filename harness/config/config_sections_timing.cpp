@@ -44,6 +44,19 @@ void parseCalibrationSection(const ConfigReader& r, const json& j, Config& c) {
   }
 }
 
+void parseEnergySection(const ConfigReader& r, const json& j, Config& c) {
+  if (!j.contains("energy")) return;
+  const json& e = j["energy"];
+  if (e.is_boolean()) {
+    c.timing.energy = e.get<bool>();
+    return;
+  }
+  r.onlyKeys(e, "/energy", {"window_s", "rounds"});
+  c.timing.energy = true;
+  if (e.contains("window_s")) c.timing.energyWindowS = r.number(e["window_s"], "/energy/window_s", 0.001, 600);
+  if (e.contains("rounds")) c.timing.energyRounds = r.integer(e["rounds"], "/energy/rounds", 1, 100);
+}
+
 void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("measure")) {
     const json& me = j["measure"];

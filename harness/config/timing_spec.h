@@ -1,6 +1,6 @@
 #pragma once
-// Config of the timing side of a case: which timing modes replay the path, and the
-// clock-control calibration run before and after the timed frames.
+// Config of the timing side of a case: which timing modes replay the path, the clock-control
+// calibration run before and after the timed frames, and the energy windows after them.
 #include <string>
 #include <vector>
 
@@ -24,6 +24,13 @@ struct TimingSpec {
   // only after a few hundred ms of continuous work.
   double minLoadS = 1.0;
   double testDrift = 0;  // tests only (never from JSON): the after-run's time x (1 + testDrift)
+  // Energy per frame (replay/energy_pass.h), where the device has an energy counter (NVML): after
+  // the timed frames, `energyRounds` windows, each from one tick of the counter to the first tick at
+  // least `energyWindowS` seconds later, the path looped while they last. Config "energy": false,
+  // or {"window_s", "rounds"}.
+  bool energy = true;
+  double energyWindowS = 2.0;
+  int energyRounds = 3;
 };
 
 }  // namespace lb

@@ -11,6 +11,7 @@
 #include "camera/camera_path.h"
 #include "error.h"
 #include "replay/case_images.h"
+#include "replay/energy_pass.h"
 #include "replay/lod_replay.h"
 #include "replay/matched.h"
 #include "replay/measure.h"
@@ -18,6 +19,8 @@
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_cache.h"
+#include "vk/context.h"
+#include "vk/energy_counter.h"
 
 namespace lb {
 
@@ -162,6 +165,14 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   }
   result.calibration = calibrator ? calibrationJson(calibrationBefore, calibrator->runOnce(), config.timing)
                                   : uncalibratedJson(config.timing, ctx);
+  // Energy per frame where the board has a counter (NVML): windows of whole ticks with the path
+  // looped, after the calibration's after-run so they do not move its drift.
+  {
+    const std::unique_ptr<EnergyCounter> counter = openEnergyCounter(ctx.props.vendorID, ctx.deviceUuid);
+    result.energy = energyJson(energyPass(renderer, *counter, config.timing, frames, pose, [] {
+      if (gStop) throw Interrupted();
+    }));
+  }
   result.targetAreaPx = scheme->targetAreaPx(renderer.params());
 
   // Measurement passes run after every timed frame, so they cannot perturb the timings.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "report/report_answer.h"
 #include "schemes/registry.h"
@@ -56,7 +57,41 @@ struct Row {
   double gpuMedian;
 };
 
+// The case's energy per frame (replay/energy_pass.h), when it was measured.
+std::optional<EnergyFigure> energyOf(const ReportCase& c) {
+  auto e = c.summary.find("energy_j_per_frame");
+  if (e == c.summary.end() || !e->is_object()) return std::nullopt;
+  for (const char* k : {"mean", "min", "max"})
+    if (!(*e)[k].is_number()) return std::nullopt;
+  EnergyFigure f{c.scheme, (*e)["mean"].get<double>(), (*e)["min"].get<double>(), (*e)["max"].get<double>(), 0};
+  f.spread = (*e)["spread"].is_number() ? (*e)["spread"].get<double>() : 0;
+  return f;
+}
+
+std::string jText(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g J", v);
+  return buf;
+}
+
 }  // namespace
+
+std::string energyRanking(std::vector<EnergyFigure> f) {
+  std::stable_sort(f.begin(), f.end(), [](const EnergyFigure& a, const EnergyFigure& b) { return a.mean < b.mean; });
+  std::string out;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (i > 0) {
+      // Ranked only where the highest round of every scheme so far lies below the lowest round of
+      // every scheme from here on: a chain of "<" then never ranks two overlapping schemes.
+      double below = -INFINITY, above = INFINITY;
+      for (size_t k = 0; k < i; ++k) below = std::max(below, f[k].max);
+      for (size_t k = i; k < f.size(); ++k) above = std::min(above, f[k].min);
+      out += below < above ? " < " : " ≈ ";
+    }
+    out += f[i].label + " " + jText(f[i].mean) + " (spread " + percentText(f[i].spread) + ")";
+  }
+  return out;
+}
 
 EqualErrorSection equalErrorSection(const ReportRun& run) {
   EqualErrorSection out;
@@ -89,10 +124,12 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                  "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "
                  "any device.";
   out.table.header = {
-      "scheme",           "draw path",           "matched parameter", "search reached", "error p95 px, run median",
-      "GPU ms median",    "GPU ms p95",          "LOD GPU ms",        "draw GPU ms",    "LOD CPU ms",
-      "triangles median", "non-degenerate share"};
-  out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true};
+      "scheme",        "draw path",  "matched parameter", "search reached",      "error p95 px, run median",
+      "GPU ms median", "GPU ms p95", "energy J/frame",    "energy spread",       "LOD GPU ms",
+      "draw GPU ms",   "LOD CPU ms", "triangles median",  "non-degenerate share"};
+  out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true, true, true};
+  std::vector<EnergyFigure> energies;
+  std::vector<std::pair<std::string, std::string>> unmeasured;  // scheme, why
   json data = json::array();
   for (const Row& r : rows) {
     const ReportCase& c = *r.c;
@@ -104,12 +141,21 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                           (reachable ? "" : " (unreachable)");
     auto gpu95 = summaryStat(c.summary, "gpu_ms", "p95");
     auto lod = summaryStat(c.summary, "lod_ms", "median"), draw = summaryStat(c.summary, "draw_ms", "median");
+    const std::optional<EnergyFigure> energy = energyOf(c);
+    if (energy)
+      energies.push_back(*energy);
+    else if (c.summary.contains("energy_reason"))
+      unmeasured.push_back({c.scheme, c.summary["energy_reason"].is_string()
+                                          ? c.summary["energy_reason"].get<std::string>()
+                                          : std::string("not measured")});
     out.table.rows.push_back(
         {textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
          textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
          textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian) : std::nullopt)),
-         textCell(formatValue(gpu95)), textCell(formatValue(lod)), textCell(formatValue(draw)),
-         textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
+         textCell(formatValue(gpu95)),
+         textCell(formatValue(energy ? std::optional<double>(energy->mean) : std::nullopt)),
+         textCell(energy ? percentText(energy->spread) : formatValue(std::nullopt)), textCell(formatValue(lod)),
+         textCell(formatValue(draw)), textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
          textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
          textCell(percentText(nonDegenerateShare(c)))});
     if (!std::isfinite(r.gpuMedian)) continue;
@@ -122,6 +168,21 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
           {{"scheme", label}, {"part", "frame (LOD inside the draw)"}, {"ms", r.gpuMedian}, {"order", r.gpuMedian}});
     }
     if (gpu95) data.push_back({{"scheme", label}, {"part", "p95"}, {"p95", *gpu95}, {"order", r.gpuMedian}});
+  }
+  // Energy at equal error: ranked only across the sensor's spread (the rounds of two schemes overlap:
+  // not ranked). The H100's sensor is said to sample part of each window only.
+  if (!energies.empty()) {
+    out.energy =
+        "Energy per frame at equal error (the board's energy counter over windows of whole counter ticks with the "
+        "path looped; the mean of the rounds, spread = (max - min) / mean), lowest first: " +
+        energyRanking(energies) +
+        ". \"<\": every round of the schemes before it used less energy a frame than every round of those after "
+        "it; \"≈\": their rounds overlap, within the sensor's spread, so they are not ranked on energy.";
+    for (size_t i = 0; i < unmeasured.size(); ++i)
+      out.energy += (i ? "; " : " Not measured: ") + unmeasured[i].first + " (" + unmeasured[i].second + ")";
+    if (!unmeasured.empty()) out.energy += ".";
+  } else if (!unmeasured.empty()) {
+    out.energy = "Energy per frame: not measured (" + unmeasured.front().second + ").";
   }
   Chart& ch = out.chart;
   ch.id = "equal_error_gpu_ms";

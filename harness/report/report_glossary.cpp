@@ -54,6 +54,14 @@ const Definition kDefinitions[] = {
     {"calibration drift",
      "change of a fixed calibration workload's GPU time from before to after the case, as a "
      "fraction; beyond 2% the clock moved during the case and its times are flagged."},
+    {"energy J/frame",
+     "joules per frame from the board's energy counter (NVML's total energy; NVIDIA only): the counter's "
+     "difference over a window of whole counter ticks of at least 2 s with the path looped, divided by the "
+     "frames drawn in it; the mean of 3 such rounds. \"–\" where the board has no counter (the case's "
+     "energy_reason says why)."},
+    {"energy spread",
+     "(max - min) / mean of the energy rounds: the run-to-run spread of the counter, whose sensor samples only "
+     "part of each window on some boards; two schemes whose rounds overlap are not ranked on energy."},
     {"FPS median",
      "1000 / GPU ms median: frames per second if the GPU time alone set the pace (not a measured "
      "display rate)."},

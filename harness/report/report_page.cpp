@@ -123,6 +123,7 @@ void equalErrorPart(Writer& w, const ReportRun& run, const std::vector<Chart>& c
   w.para(eq.intro);
   if (!eq.caveat.empty()) w.para(eq.caveat, "caveat");
   w.table(eq.table, "equal-error", true);
+  if (!eq.energy.empty()) w.para(eq.energy);
   chartBoxes(w, "equal-error", charts);
 }
 

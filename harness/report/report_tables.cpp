@@ -43,8 +43,10 @@ constexpr Column kCaseColumns[] = {
     {"draw GPU ms", "draw_ms", "median", true},
     {"LOD CPU ms", "lod_cpu_ms", "median", true},
     {"CPU ms median", "cpu_ms", "median"},
-    {"harness CPU ms", "cpu_harness_ms", "median", true},  // runs recorded before timing modes lack it
-    {"calibration drift", "calibration", "drift", true},   // flagged when |drift| > 0.02
+    {"harness CPU ms", "cpu_harness_ms", "median", true},     // runs recorded before timing modes lack it
+    {"calibration drift", "calibration", "drift", true},      // flagged when |drift| > 0.02
+    {"energy J/frame", "energy_j_per_frame", "mean", true},   // boards with an energy counter (NVML)
+    {"energy spread", "energy_j_per_frame", "spread", true},  // (max - min) / mean of its rounds
     {"FPS median", "fps_median", ""},
     {"triangles median", "triangles", "median"},
     {"patches median", "patches", "median"},
@@ -190,6 +192,18 @@ Table contextTable(const ReportRun& run) {
                                                               text(x, "power_limit_enforced_w") + " W)"
                                                         : "power limit unknown: " + text(x, "power_limit_reason");
     row("board", "UUID " + text(x, "device_uuid") + ", " + power);
+  }
+  if (x.contains("energy_tick_ms")) {  // the energy counter and clocks, where the run recorded them
+    std::string energy =
+        plainNumber(x, "energy_tick_ms")
+            ? text(x, "energy_counter") + ", tick " + formatValue(plainNumber(x, "energy_tick_ms")) + " ms as measured"
+            : "none: " + text(x, "energy_reason");
+    std::string clocks = plainNumber(x, "sm_clock_max_mhz") || plainNumber(x, "sm_clock_mhz")
+                             ? "SM " + text(x, "sm_clock_mhz") + " of " + text(x, "sm_clock_max_mhz") +
+                                   " MHz, memory " + text(x, "mem_clock_mhz") + " of " + text(x, "mem_clock_max_mhz") +
+                                   " MHz at the run's start"
+                             : "clocks unknown: " + text(x, "clocks_reason");
+    row("energy counter", energy + "; " + clocks);
   }
   row("driver", text(x, "driver") + ", " + text(x, "driver_info") + ", version " + text(x, "driver_version"));
   row("Vulkan API", text(x, "api_version") + ", timestampPeriod " + text(x, "timestamp_period_ns") + " ns");

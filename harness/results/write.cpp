@@ -21,6 +21,7 @@
 #include "version.h"
 #include "vk/context.h"
 #include "vk/device_identity.h"
+#include "vk/energy_counter.h"
 
 namespace lb {
 
@@ -70,6 +71,17 @@ json runContext(const Context& ctx, const Config& config) {
   char host[256] = "unknown";
   gethostname(host, sizeof host - 1);
   const PowerLimit power = readPowerLimit(ctx.props.vendorID, ctx.deviceUuid);
+  // The energy counter's tick, measured (up to two ticks of polling), and the board's clocks now
+  // (idle: the run has not started; each case records the SM clock of its energy windows).
+  const std::unique_ptr<EnergyCounter> energy = openEnergyCounter(ctx.props.vendorID, ctx.deviceUuid);
+  double tickMs = -1;
+  std::string energyReason = energy->reason();
+  if (!config.timing.energy)
+    energyReason = "\"energy\": false in the config";
+  else if (energy->available() && (tickMs = measureTickMs(*energy, 3.0)) < 0)
+    energyReason = "the energy counter (" + energy->name() + ") did not change twice in 3 s";
+  const GpuClocks clocks = energy->clocks();
+  auto mhz = [](int v) { return v >= 0 ? json(v) : json(nullptr); };
   return {
       {"tool", "lodbench"},
       {"tool_version", kToolVersion},
@@ -87,6 +99,14 @@ json runContext(const Context& ctx, const Config& config) {
       {"power_limit_w", power.watts >= 0 ? json(power.watts) : json(nullptr)},
       {"power_limit_enforced_w", power.enforcedWatts >= 0 ? json(power.enforcedWatts) : json(nullptr)},
       {"power_limit_reason", power.reason.empty() ? json(nullptr) : json(power.reason)},
+      {"energy_counter", energy->available() ? json(energy->name()) : json(nullptr)},
+      {"energy_tick_ms", tickMs > 0 ? json(tickMs) : json(nullptr)},
+      {"energy_reason", energyReason.empty() ? json(nullptr) : json(energyReason)},
+      {"sm_clock_mhz", mhz(clocks.smMhz)},
+      {"sm_clock_max_mhz", mhz(clocks.smMaxMhz)},
+      {"mem_clock_mhz", mhz(clocks.memMhz)},
+      {"mem_clock_max_mhz", mhz(clocks.memMaxMhz)},
+      {"clocks_reason", clocks.reason.empty() ? json(nullptr) : json(clocks.reason)},
       {"driver", ctx.driverName},
       {"driver_info", ctx.driverInfo},
       {"driver_version", driverVersionString(ctx.props)},
@@ -153,6 +173,8 @@ json caseSummary(const CaseResult& r) {
   if (!r.calibration.is_null()) out["calibration"] = r.calibration;
   if (r.lodState.is_object())
     for (const auto& [k, v] : r.lodState.items()) out[k] = v;
+  if (r.energy.is_object())
+    for (const auto& [k, v] : r.energy.items()) out[k] = v;
   if (r.metrics.empty()) return out;
   // Per metric: statistics over the measured frames where it is available.
   std::map<std::string, std::vector<double>> series;

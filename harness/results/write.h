@@ -36,6 +36,9 @@ struct CaseResult {
   // Stateful GPU LOD (replay/lod_replay.h): converge_updates, lod_converged and the state's size
   // facts, merged into the case summary; null for every other scheme.
   nlohmann::json lodState;
+  // Energy per frame (replay/energy_pass.h energyJson): {"energy_j_per_frame", "energy_reason"},
+  // merged into the case summary; null where the case never reached the pass.
+  nlohmann::json energy;
 };
 
 void writeFileAtomic(const std::string& path, const std::string& contents);

@@ -1,7 +1,7 @@
 #pragma once
 // Which board a run used, beyond its model name: the device's UUID (Vulkan's
 // VkPhysicalDeviceIDProperties, core since 1.1) and, on NVIDIA, the board's power limit read
-// through NVML. NVML is opened at run time (dlopen "libnvidia-ml.so.1"): no build dependency, and
+// through NVML (vk/nvml.h). NVML is opened at run time (dlopen "libnvidia-ml.so.1"): no build dependency, and
 // a machine without it records the limit as unknown, with the reason, never as 0.
 #include <vulkan/vulkan.h>
 
