@@ -32,6 +32,28 @@ const std::vector<const Scheme*>& allSchemes() {
   return schemes;
 }
 
+TuneSpace defaultTuneSpace(const Scheme& scheme) {
+  const SchemeInfo& info = scheme.info();
+  TuneSpace space;
+  // Patches per side decide how fine a tessellation scheme can go at all (level 64 x grid cells a
+  // side): 16 is coarse for a 4097^2 terrain, 256 reaches 16385^2 at level 64.
+  if (info.path == DrawPath::Tessellation && !info.mainParam.empty()) space["grid"] = {16, 64, 256};
+  // What a user of each method sets besides its main knob (the sources' constants, as ranges).
+  static const std::map<std::string, TuneSpace> kExtra = {
+      {"interlock", {{"min_lod", {1, 4}}}},           // the book's minMaxLOD.x
+      {"cdlod", {{"node_cells", {16, 32, 64}}}},      // Strugar's leaf node size
+      {"cdlod-sse", {{"node_cells", {16, 32, 64}}}},  // the same nodes, refined by error
+      {"clipmap", {{"cells_per_texel", {1, 2}}}},     // the finest level's spacing
+      {"cbt", {{"subd", {2, 3, 4}}}},                 // LEB2D's leaf subdivision
+      {"cbt-ts", {{"subd", {2, 3, 4}}}},
+  };
+  auto extra = kExtra.find(info.name);
+  if (extra != kExtra.end())
+    for (const auto& [k, v] : extra->second)
+      if (k != info.mainParam) space[k] = v;
+  return space;
+}
+
 const Scheme* findScheme(const std::string& name) {
   for (const Scheme* s : allSchemes())
     if (s->info().name == name) return s;

@@ -76,11 +76,13 @@ json measurementInputs(const Config& c) {
     j["timing"]["energy"] = false;
   else if (c.timing.energyWindowS != defaults.energyWindowS || c.timing.energyRounds != defaults.energyRounds)
     j["timing"]["energy"] = {{"window_s", c.timing.energyWindowS}, {"rounds", c.timing.energyRounds}};
-  if (c.match.on())
+  if (c.match.on()) {
     j["match"] = {{"metric", c.match.metric},
                   {"value", c.match.value},
                   {"frames", c.match.frames},
                   {"iterations", c.match.iterations}};
+    if (c.match.budget > 0) j["match"]["budget"] = c.match.budget;  // named only when set: earlier digests hold
+  }
   if (c.timing.testDrift != 0) j["timing"]["test_drift"] = c.timing.testDrift;  // tests: a planted drift
   if (c.testSlowdown > 0) j["test_slowdown"] = c.testSlowdown;  // a planted slowdown changes the timings
   return j;

@@ -12,6 +12,7 @@
 #include "config/config_sections.h"
 #include "config/json_lines.h"
 #include "config/json_strict.h"
+#include "did_you_mean.h"
 #include "error.h"
 #include "number_text.h"
 #include "schemes/registry.h"
@@ -178,19 +179,54 @@ static void requireRanges(const ConfigReader& r, const SchemeInfo& info, const P
   }
 }
 
+// "tune": {"grid": [16, 64, 256], "subd": [2, 3]}: settings a tuned matched search tries, each a
+// list of values in its range; the main parameter is the one the search itself finds.
+static void parseTune(const ConfigReader& r, const Scheme& scheme, const json& t, const std::string& ptr,
+                      SchemeEntry& e) {
+  if (!t.is_object()) r.fail(ptr, "expected an object of setting: [values] (\"grid\" or a parameter)");
+  const SchemeInfo& info = scheme.info();
+  for (auto& [k, v] : t.items()) {
+    const std::string at = ptr + "/" + k;
+    const ParamSpec* spec = nullptr;
+    for (const ParamSpec& p : info.params)
+      if (p.name == k) spec = &p;
+    if (k == info.mainParam)
+      r.fail(at, "'" + k + "' is " + info.name + "'s main parameter: the matched search finds it");
+    if (k != "grid" && !spec) {
+      std::vector<std::string> names{"grid"};
+      for (const ParamSpec& p : info.params)
+        if (p.name != info.mainParam) names.push_back(p.name);
+      r.fail(at, "'" + printable(k) + "' is neither grid nor a parameter of " + info.name + didYouMean(k, names));
+    }
+    if (k == "grid" && info.path != DrawPath::Tessellation)
+      r.fail(at, info.name + " draws no patch grid: grid does not change it");
+    if (!v.is_array() || v.empty()) r.fail(at, "expected a non-empty list of values");
+    std::vector<double> values;
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string vi = at + "/" + std::to_string(i);
+      values.push_back(k == "grid" ? double(r.integer(v[i], vi, 1, 1024)) : r.number(v[i], vi, spec->min, spec->max));
+      if (spec && spec->integer && values.back() != std::round(values.back())) r.fail(vi, "expected an integer");
+      if (std::count(values.begin(), values.end(), values.back()) > 1) r.fail(vi, "value listed twice; remove one");
+    }
+    e.tune[k] = values;
+  }
+  e.tuneGiven = true;
+}
+
 static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::string& ptr) {
   SchemeEntry e;
   json params = json::object();
   if (s.is_string()) {
     e.name = s.get<std::string>();
   } else {
-    r.onlyKeys(s, ptr, {"name", "params"});
+    r.onlyKeys(s, ptr, {"name", "params", "tune"});
     if (!s.contains("name")) r.fail(ptr, "missing 'name'");
     e.name = r.string(s["name"], ptr + "/name");
     if (s.contains("params")) params = s["params"];
   }
   const Scheme* scheme = findScheme(e.name);
   if (!scheme) r.fail(ptr + (s.is_string() ? "" : "/name"), unknownSchemeText(printable(e.name)));
+  if (s.is_object() && s.contains("tune")) parseTune(r, *scheme, s["tune"], ptr + "/tune", e);
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
   e.variants = {ParamValues{}};
@@ -262,6 +298,9 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   parseEnergySection(r, j, c);
   parseMeasureSection(r, j, c);
   parseMatchSection(r, j, c);
+  for (size_t i = 0; i < c.schemes.size(); ++i)
+    if (c.schemes[i].tuneGiven && !c.match.on())
+      r.fail("/schemes/" + std::to_string(i) + "/tune", "tuning needs a \"match\" section (a target to reach)");
   return c;
 }
 
@@ -389,7 +428,8 @@ std::vector<Case> expandCases(const Config& config) {
   auto resolved = [](const Variant& v) { return resolveParams(findScheme(v.scheme)->info(), v.params); };
   for (size_t i = 0; i < variants.size(); ++i)
     for (size_t j = i + 1; j < variants.size(); ++j)
-      if (variants[i].scheme == variants[j].scheme && resolved(variants[i]) == resolved(variants[j])) {
+      if (variants[i].scheme == variants[j].scheme && resolved(variants[i]) == resolved(variants[j]) &&
+          config.schemes[variants[i].entry].tune == config.schemes[variants[j].entry].tune) {
         // At the second entry's line, naming the first's: "c.json:9: field '/schemes/2': /schemes/0
         // (line 7) and /schemes/2 both run uniform level=3; remove one".
         const std::string first = "/schemes/" + std::to_string(variants[i].entry),
@@ -427,11 +467,18 @@ std::vector<Case> expandCases(const Config& config) {
             if (config.grids.size() > 1) c.id += "_g" + std::to_string(grid);
             c.grid = grid;
             if (config.match.on()) c.id += "_match-" + config.match.metric + formatNumber(config.match.value);
+            const SchemeEntry& entry = config.schemes[v.entry];
+            if (config.match.on())
+              c.tune = entry.tuneGiven     ? entry.tune
+                       : config.match.tune ? defaultTuneSpace(*findScheme(v.scheme))
+                                           : TuneSpace{};
+            if (!c.tune.empty()) c.id += "_tuned";
             // Every parameter with its resolved value: a default that changes meaning changes the digest.
             c.params = resolved(v);
             nlohmann::json params = nlohmann::json::object();
             for (auto& [k, val] : c.params) params[k] = val;
             c.inputs = caseInputs(terrains[ti], paths[pi], res.first, res.second, v.scheme, params, measurement);
+            if (!c.tune.empty()) c.inputs["tune"] = c.tune;  // named only when tuned: earlier digests hold
             c.digest = inputsDigest(c.inputs);
             c.terrainDigest = inputsDigest(terrains[ti]);
             cases.push_back(std::move(c));

@@ -10,6 +10,7 @@
 #include "config/measure_spec.h"
 #include "config/timing_spec.h"
 #include "render/scheme.h"
+#include "schemes/registry.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
@@ -17,6 +18,10 @@ namespace lb {
 struct SchemeEntry {
   std::string name;
   std::vector<ParamValues> variants;  // expanded parameter grid (at least one, possibly empty map)
+  // "tune": the settings a tuned matched search tries ("grid" or a parameter: values); given =
+  // the entry listed it (else a tuned match uses the registry's space, schemes/registry.h).
+  TuneSpace tune;
+  bool tuneGiven = false;
 };
 
 struct ImageRequest {
@@ -72,6 +77,7 @@ struct Case {
   std::string path;
   int width = 0, height = 0;
   int grid = 32;
+  TuneSpace tune;  // a tuned matched search's space (empty: the main parameter alone)
   // What defines the case (config/case_identity.h) and its SHA-256: resume reuses a finished
   // case only when the digest is unchanged.
   nlohmann::json inputs;

@@ -86,7 +86,7 @@ void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
 void parseMatchSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("match")) {
     const json& m = j["match"];
-    r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations"});
+    r.onlyKeys(m, "/match", {"metric", "value", "frames", "iterations", "tune", "budget"});
     if (!m.contains("metric") || !m.contains("value")) r.fail("/match", "needs 'metric' and 'value'");
     c.match.metric = r.string(m["metric"], "/match/metric");
     if (c.match.metric != "triangles" && c.match.metric != "err_mean_px" && c.match.metric != "err_p95_px")
@@ -94,6 +94,11 @@ void parseMatchSection(const ConfigReader& r, const json& j, Config& c) {
     c.match.value = r.number(m["value"], "/match/value", 0, 1e12);
     if (m.contains("frames")) c.match.frames = r.integer(m["frames"], "/match/frames", 1, 10000);
     if (m.contains("iterations")) c.match.iterations = r.integer(m["iterations"], "/match/iterations", 1, 60);
+    if (m.contains("tune")) {
+      if (!m["tune"].is_boolean()) r.fail("/match/tune", "expected true or false");
+      c.match.tune = m["tune"].get<bool>();
+    }
+    if (m.contains("budget")) c.match.budget = r.integer(m["budget"], "/match/budget", 2, 10000);
   }
 }
 

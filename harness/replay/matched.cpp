@@ -167,4 +167,123 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
   return out;
 }
 
+namespace {
+
+// Mean GPU ms of the match's evaluation frames, each drawn once after a short warm-up, at `params`
+// on a `grid` of patches; a stateful LOD walks its history to each frame as the search does.
+double trialCost(Context& ctx, const Scheme& scheme, const ParamValues& params, const Heightfield& terrain,
+                 const CameraPath& path, const Config& config, int width, int height, int grid) {
+  int frames = frameCount(path, config.fps);
+  if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
+  Renderer r(ctx, terrain, {width, height, grid});
+  r.setScheme(scheme, params);
+  auto poseAt = [&](int f) { return samplePose(path, config.fps, f, terrain); };
+  std::unique_ptr<LodReplay> replay;
+  if (r.statefulLod()) {
+    startLod(r, poseAt(0), config.warmupFrames);
+    replay = std::make_unique<LodReplay>(r, poseAt, std::vector<uint32_t>{});
+  }
+  const int n = std::max(1, std::min(config.match.frames, frames));
+  double sum = 0;
+  for (int k = 0; k < n; ++k) {
+    const int f = n == 1 ? 0 : k * (frames - 1) / (n - 1);
+    std::unique_ptr<FrozenLod> frozen;
+    if (replay) {
+      replay->advanceTo(f);
+      frozen = std::make_unique<FrozenLod>(r);
+    }
+    for (int w = 0; w < 2; ++w) r.submitFrame(-1, poseAt(f), poseAt(f));  // caches and clocks settle
+    r.submitFrame(f, poseAt(f), poseAt(f));
+    r.finish();
+    sum += r.takeCompleted().back().gpuMs;
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
+                        const CameraPath& path, const Config& config, const Case& c) {
+  TuneResult out;
+  // The configurations: the cartesian product of the space's settings, in key order.
+  std::vector<std::map<std::string, double>> configs{{}};
+  for (const auto& [k, values] : c.tune) {
+    std::vector<std::map<std::string, double>> next;
+    for (const auto& partial : configs)
+      for (double v : values) {
+        auto m = partial;
+        m[k] = v;
+        next.push_back(m);
+      }
+    configs = next;
+  }
+  const int K = int(configs.size());
+  out.budget = config.match.budget > 0 ? config.match.budget : 3 * (config.match.iterations + 2);
+  Config each = config;
+  each.match.iterations = std::min(config.match.iterations, std::max(2, out.budget / K - 2));
+  const double target = config.match.value;
+  for (const auto& settings : configs) {
+    TuneTrial t;
+    t.settings = settings;
+    ParamValues pv = base;
+    Case cc = c;
+    for (const auto& [k, v] : settings) {
+      if (k == "grid")
+        cc.grid = int(v);
+      else
+        pv[k] = v;
+    }
+    try {
+      t.match = matchParameter(ctx, scheme, pv, terrain, path, each, cc);
+      if (!t.match.param.empty()) pv[t.match.param] = t.match.value;
+      t.costMs = trialCost(ctx, scheme, pv, terrain, path, each, cc.width, cc.height, cc.grid);
+    } catch (const Interrupted&) {
+      throw;
+    } catch (const std::logic_error&) {
+      throw;
+    } catch (const std::exception& e) {
+      t.costMs = std::nan("");
+      t.match.reachable = false;
+      t.match.trials.push_back({0, std::nan(""), e.what()});
+    }
+    out.evaluations += int(t.match.trials.size());
+    out.trials.push_back(t);
+  }
+  // The cheapest that reaches the target; else the closest to it.
+  for (int i = 0; i < K; ++i) {
+    const TuneTrial& t = out.trials[size_t(i)];
+    if (std::isnan(t.costMs)) continue;
+    if (out.chosen < 0) {
+      out.chosen = i;
+      continue;
+    }
+    const TuneTrial& b = out.trials[size_t(out.chosen)];
+    if (t.match.reachable != b.match.reachable) {
+      if (t.match.reachable) out.chosen = i;
+    } else if (t.match.reachable ? t.costMs < b.costMs
+                                 : std::abs(t.match.achieved - target) < std::abs(b.match.achieved - target)) {
+      out.chosen = i;
+    }
+  }
+  if (out.chosen < 0) {
+    std::string why = out.trials.empty() || out.trials.back().match.trials.empty()
+                          ? ""
+                          : ": " + out.trials.back().match.trials.back().reason;
+    throw std::runtime_error("tune: no configuration of " + scheme.info().name + " runs (" + std::to_string(K) +
+                             " tried)" + why);
+  }
+  const TuneTrial& best = out.trials[size_t(out.chosen)];
+  out.match = best.match;
+  out.params = base;
+  out.grid = c.grid;
+  for (const auto& [k, v] : best.settings) {
+    if (k == "grid")
+      out.grid = int(v);
+    else
+      out.params[k] = v;
+  }
+  if (!best.match.param.empty()) out.params[best.match.param] = best.match.value;
+  return out;
+}
+
 }  // namespace lb

@@ -2,6 +2,7 @@
 // Matched comparisons: before a case runs, search its scheme's main parameter so that the case
 // hits a triangle budget or a mean screen-space error on its path; schemes are then compared at
 // equal cost or equal quality.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,5 +37,33 @@ struct MatchResult {
 // The parameter a match searches is the scheme's SchemeInfo::mainParam; "" = none, nothing is searched.
 MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                            const CameraPath& path, const Config& config, const Case& c);
+
+// One configuration of a tuned search: its settings ("grid" and parameters), the main
+// parameter's search there, and the GPU ms a frame costs at the value found (NaN: not timed, the
+// search could not run).
+struct TuneTrial {
+  std::map<std::string, double> settings;
+  MatchResult match;
+  double costMs = 0;
+};
+
+struct TuneResult {
+  ParamValues params;  // the chosen configuration's parameters, the main one at its matched value
+  int grid = 0;        // its patch grid
+  MatchResult match;   // its search
+  std::vector<TuneTrial> trials;
+  int chosen = -1;      // index into trials
+  int evaluations = 0;  // over every configuration
+  int budget = 0;
+};
+
+// The tuned search (issue: each scheme at its best configuration): for every configuration of the
+// case's tuning space (Case::tune: the cartesian product of its settings), the main parameter's
+// matched search with min(iterations, max(2, budget / K - 2)) steps, then the mean GPU ms of the
+// match's frames at the value found. The cheapest configuration that reaches the target wins; if
+// none does, the one whose metric is closest to it (its match says unreachable). A configuration
+// that cannot run is recorded and skipped; throws only when none runs.
+TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
+                        const CameraPath& path, const Config& config, const Case& c);
 
 }  // namespace lb

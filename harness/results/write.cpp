@@ -333,6 +333,9 @@ json caseJson(const Case& c, const CaseResult& r) {
   for (auto& [k, v] : c.listedParams) listed[k] = v;
   if (r.matched.is_object() && !r.matched.value("param", "").empty())
     params[r.matched["param"]] = listed[r.matched["param"]] = r.matched["value"];
+  if (r.matched.is_object() && r.matched.contains("tuned"))  // the tuned configuration's settings
+    for (const auto& [k, v] : r.matched["tuned"]["chosen"].items())
+      if (k != "grid") params[k] = listed[k] = v;
   json terrain = {{"type", c.terrain.type},
                   {"label", c.terrainLabel},
                   {"file", c.terrain.file},
@@ -359,7 +362,7 @@ json caseJson(const Case& c, const CaseResult& r) {
           {"terrain", terrain},
           {"path", c.path},
           {"resolution", {c.width, c.height}},
-          {"grid", c.grid},
+          {"grid", r.grid > 0 ? r.grid : c.grid},
           {"image_reference", kImageReference},
           {"status", r.status},
           {"reason", r.reason},

@@ -1,0 +1,128 @@
+// The tuned matched search (replay/matched.h tuneAndMatch): a setting the harness used to fix (the
+// tessellation grid) decides whether a target is reachable at all; tuned over it, the scheme
+// reaches it. Also the "tune" field's errors.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+#include "error.h"
+#include "sweep/runner.h"
+
+using namespace lb;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kConfigs = std::string(LODBENCH_SOURCE_DIR) + "/configs";
+
+// A 1025^2 terrain seen low and close: uniform at the old fixed grid of 2 patches a side tops out at
+// 128 cells a side (level 64), too coarse for 0.5 px; a grid of 8 reaches it.
+json tuneRun() {
+  return {{"name", "tune"},
+          {"resolution", {64, 36}},
+          {"grid", 2},
+          {"fps", 10},
+          {"warmup_frames", 1},
+          {"max_frames", 3},
+          {"repetitions", 1},
+          {"terrain", {{"type", "procedural"}, {"size", 1025}, {"seed", 3}, {"extent", 4000}, {"height_scale", 600}}},
+          {"paths", {"paths/lowalt.csv"}},
+          {"schemes", {"uniform", {{"name", "uniform"}, {"tune", {{"grid", {2, 8}}}}}}},
+          {"measure", {{"every", 0}}},
+          {"images", {{"frames", json::array()}, {"modes", json::array()}}},
+          {"match", {{"metric", "err_p95_px"}, {"value", 0.5}, {"frames", 2}, {"iterations", 6}}}};
+}
+
+std::string configError(const json& cfg) {
+  try {
+    parseConfig(cfg.dump(2), "tune.json", kConfigs);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Tune, TheOldFixedGridCannotReachTheTargetTheTunedSearchDoes) {
+  Config c = parseConfig(tuneRun().dump(), "tune.json", kConfigs);
+  const fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_tune_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  RunOptions o;
+  o.outDir = dir.string();
+  o.progress = false;
+  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
+  RunTotals t = runSweep(c, o);
+  EXPECT_EQ(t.failed, 0);
+  EXPECT_EQ(t.validationErrors, 0);
+  int cases = 0;
+  for (const auto& e : fs::directory_iterator(dir / "cases")) {
+    const json cj = json::parse(std::ifstream(e.path()));
+    const std::string id = cj["case_id"];
+    const json& m = cj["matched"];
+    ASSERT_EQ(cj["status"], "ok") << id << ": " << cj["reason"];
+    ++cases;
+    if (!m.contains("tuned")) {  // the fixed grid of 2: level 64 is as fine as it goes
+      EXPECT_FALSE(m["reachable"].get<bool>()) << id << ": " << m.dump();
+      EXPECT_EQ(m["value"], 64) << id;
+      EXPECT_GT(m["achieved"].get<double>(), 0.5) << id;
+      EXPECT_EQ(cj["grid"], 2);
+      continue;
+    }
+    EXPECT_NE(id.find("_tuned"), std::string::npos) << id;
+    EXPECT_TRUE(m["reachable"].get<bool>()) << m.dump(2);
+    EXPECT_LE(m["achieved"].get<double>(), 0.5 * 1.05);
+    const json& tuned = m["tuned"];
+    EXPECT_EQ(tuned["chosen"]["grid"], 8);
+    EXPECT_EQ(cj["grid"], 8) << "the case draws the chosen grid";
+    EXPECT_EQ(cj["params"]["level"], m["value"]);
+    ASSERT_EQ(tuned["configurations"].size(), 2u);
+    int evaluations = 0;
+    for (const json& conf : tuned["configurations"]) {
+      EXPECT_TRUE(conf["cost_ms"].is_number()) << conf.dump();
+      EXPECT_FALSE(conf["match"]["trials"].empty());
+      evaluations += int(conf["match"]["trials"].size());
+      if (conf["settings"]["grid"] == 2) EXPECT_FALSE(conf["match"]["reachable"].get<bool>());
+    }
+    EXPECT_EQ(tuned["evaluations"], evaluations);
+    EXPECT_LE(evaluations, tuned["budget"].get<int>()) << "the search keeps to its budget";
+  }
+  EXPECT_EQ(cases, 2);
+  fs::remove_all(dir);
+}
+
+TEST(Tune, TuneFieldErrorsNameTheField) {
+  json cfg = tuneRun();
+  cfg.erase("match");
+  EXPECT_NE(configError(cfg).find("/schemes/1/tune"), std::string::npos) << configError(cfg);
+  cfg = tuneRun();
+  cfg["schemes"][1]["tune"] = {{"level", {4, 8}}};
+  EXPECT_NE(configError(cfg).find("main parameter"), std::string::npos) << configError(cfg);
+  cfg["schemes"] = {{{"name", "cdlod"}, {"tune", {{"grid", {2, 8}}}}}};
+  EXPECT_NE(configError(cfg).find("draws no patch grid"), std::string::npos) << configError(cfg);
+  cfg["schemes"] = {{{"name", "cdlod"}, {"tune", {{"node_cell", {16, 32}}}}}};
+  EXPECT_NE(configError(cfg).find("did you mean 'node_cells'"), std::string::npos) << configError(cfg);
+  cfg["schemes"] = {{{"name", "cbt"}, {"tune", {{"subd", {2, 2}}}}}};
+  EXPECT_NE(configError(cfg).find("listed twice"), std::string::npos) << configError(cfg);
+  cfg["schemes"] = {{{"name", "cbt"}, {"tune", {{"subd", {9}}}}}};
+  EXPECT_NE(configError(cfg).find("/schemes/0/tune/subd/0"), std::string::npos) << configError(cfg);
+  // A tuned and an untuned entry of one scheme are two cases, not a duplicate.
+  EXPECT_EQ(configError(tuneRun()), "");
+  // "match": {"tune": true}: every scheme takes the registry's space.
+  cfg = tuneRun();
+  cfg["schemes"] = {"sphere", "cbt"};
+  cfg["match"]["tune"] = true;
+  Config c = parseConfig(cfg.dump(), "tune.json", kConfigs);
+  std::vector<Case> cases = expandCases(c);
+  ASSERT_EQ(cases.size(), 2u);
+  for (const Case& k : cases) {
+    EXPECT_FALSE(k.tune.empty()) << k.id;
+    EXPECT_NE(k.id.find("_tuned"), std::string::npos);
+    EXPECT_TRUE(k.inputs.contains("tune"));
+  }
+}
