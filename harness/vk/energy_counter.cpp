@@ -51,19 +51,40 @@ NvmlEnergyCounter::NvmlEnergyCounter(uint32_t vendorId, const std::string& devic
   if (int r = nvml_->totalEnergyMj(mj); r != 0) reason_ = "NVML total energy counter: " + nvml_->errorText(r);
 }
 
-NvmlEnergyCounter::~NvmlEnergyCounter() = default;
+NvmlEnergyCounter::~NvmlEnergyCounter() {
+  stop_ = true;
+  if (sampler_.joinable()) sampler_.join();
+}
 
 std::optional<uint64_t> NvmlEnergyCounter::readMj() {
-  unsigned long long mj = 0;
   if (!nvml_->open()) {
     readError_ = nvml_->reason();
     return std::nullopt;
   }
-  if (int r = nvml_->totalEnergyMj(mj); r != 0) {
+  if (!sampler_.joinable()) {  // the first read: one in this thread, then the sampler's
+    unsigned long long mj = 0;
+    if (int r = nvml_->totalEnergyMj(mj); r != 0) {
+      readError_ = "NVML total energy counter: " + nvml_->errorText(r);
+      return std::nullopt;
+    }
+    latest_ = mj;
+    sampler_ = std::thread([this] {
+      while (!stop_) {
+        unsigned long long v = 0;
+        if (int r = nvml_->totalEnergyMj(v); r != 0) {
+          error_ = r;
+          return;
+        }
+        latest_ = v;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    });
+  }
+  if (int r = error_.load(); r != 0) {
     readError_ = "NVML total energy counter: " + nvml_->errorText(r);
     return std::nullopt;
   }
-  return uint64_t(mj);
+  return latest_.load();
 }
 
 GpuClocks NvmlEnergyCounter::clocks() const {
