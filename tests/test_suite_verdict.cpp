@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "cli_run.h"
 #include "compare/suite_verdict.h"
@@ -174,4 +175,39 @@ TEST(SuiteVerdict, VerdictCommandWritesVerdictJsonOfARun) {
   EXPECT_GE(winsAndTies, 2) << "every workload has a winner or a tie";
   lb::test::CliOut bad = lb::test::lodbench("verdict " + dir + "/nothing");
   EXPECT_EQ(bad.code, 2) << bad.text;
+}
+
+// "interleave": the repetitions run as rounds across the sweep (every case, then every case again),
+// each later round with the first round's parameters; each case's record holds every round's frames
+// as its repetitions, and the verdict reads them.
+TEST(SuiteVerdict, InterleavedRoundsRunEveryCaseOncePerRound) {
+  const std::string dir = lb::test::freshDir("interleave");
+  std::filesystem::create_directories(dir);
+  const std::string cfg = dir + "/interleave.json";
+  nlohmann::json c = lb::test::readJson(lb::test::kTinyConfig);
+  c["name"] = "interleave";
+  c["repetitions"] = 3;
+  c["max_frames"] = 6;
+  c["interleave"] = true;
+  c["paths"] = {std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/flyover.csv"};
+  std::ofstream(cfg) << c.dump(2);
+  const std::string run = dir + "/run";
+  lb::test::CliOut r = lb::test::lodbench("run " + cfg + " --out " + run);
+  ASSERT_EQ(r.code, 0) << r.text;
+  // Round-major order: both cases' round 2 before either's round 3.
+  std::vector<std::string> rounds;
+  std::istringstream lines(r.text);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("  round ") == 0) rounds.push_back(line.substr(8, 3));
+  EXPECT_EQ(rounds, (std::vector<std::string>{"2/3", "2/3", "3/3", "3/3"})) << r.text;
+  for (const auto& e : std::filesystem::directory_iterator(run + "/cases")) {
+    const nlohmann::json cj = lb::test::readJson(e.path().string());
+    ASSERT_EQ(cj["status"], "ok") << cj["reason"];
+    EXPECT_EQ(cj["frames"].size(), 18u) << "3 rounds of 6 frames";
+    EXPECT_EQ(cj["inputs"]["measurement"]["interleave"], true);
+  }
+  lb::test::CliOut v = lb::test::lodbench("verdict " + run);
+  ASSERT_EQ(v.code, 0) << v.text;
+  const nlohmann::json j = lb::test::readJson(run + "/verdict.json");
+  EXPECT_TRUE(j["workloads"][0]["no_interval"].empty()) << j.dump(2);
 }

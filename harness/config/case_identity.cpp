@@ -83,6 +83,7 @@ json measurementInputs(const Config& c) {
                   {"iterations", c.match.iterations}};
     if (c.match.budget > 0) j["match"]["budget"] = c.match.budget;  // named only when set: earlier digests hold
   }
+  if (c.interleave) j["interleave"] = true;  // named only when on: earlier digests hold
   if (c.timing.testDrift != 0) j["timing"]["test_drift"] = c.timing.testDrift;  // tests: a planted drift
   if (c.testSlowdown > 0) j["test_slowdown"] = c.testSlowdown;  // a planted slowdown changes the timings
   return j;

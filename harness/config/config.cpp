@@ -280,7 +280,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   r.onlyKeys(j, "", {"name",     "device",        "resolution", "resolutions", "grid",           "grids",
                      "fps",      "warmup_frames", "max_frames", "repetitions", "case_timeout_s", "terrain",
                      "terrains", "path",          "paths",      "schemes",     "images",         "measure",
-                     "match",    "description",   "timing",     "calibration", "energy"});
+                     "match",    "description",   "timing",     "calibration", "energy",         "interleave"});
   Config c;
   c.file = file;
   c.lines = r.lines;

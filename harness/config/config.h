@@ -52,6 +52,9 @@ struct Config {
   int warmupFrames = 5;
   int maxFrames = 0;  // 0 = every frame of the path
   int repetitions = 1;
+  // true: the repetitions run as rounds across the sweep (every case once, then every case again),
+  // so clock and thermal drift fall on every scheme alike (sweep/runner.h).
+  bool interleave = false;
   double caseTimeoutS = 0;  // a case running longer fails with "timeout" (0 = no limit)
   std::vector<TerrainSpec> terrains;
   std::vector<std::string> paths;  // resolved file paths

@@ -61,6 +61,10 @@ void parseFrameSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("max_frames")) c.maxFrames = r.integer(j["max_frames"], "/max_frames", 0, 10000000);
   if (j.contains("case_timeout_s")) c.caseTimeoutS = r.number(j["case_timeout_s"], "/case_timeout_s", 0, 1e7);
   if (j.contains("repetitions")) c.repetitions = r.integer(j["repetitions"], "/repetitions", 1, 1000);
+  if (j.contains("interleave")) {
+    if (!j["interleave"].is_boolean()) r.fail("/interleave", "expected true or false");
+    c.interleave = j["interleave"].get<bool>();
+  }
 }
 
 std::vector<int> parsePathSection(const ConfigReader& r, const json& j, const std::string& baseDir, Config& c) {

@@ -136,6 +136,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     if (!m.param.empty()) params[m.param] = m.value;
     result.matched = matchJson(config, m);
   }
+  result.params = params;
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, params);
   recordStageCosts(c, loadS, renderer.setupCosts());

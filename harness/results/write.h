@@ -26,6 +26,7 @@ struct CaseResult {
   double targetAreaPx = 0;            // the scheme's target triangle area, 0 = none
   nlohmann::json matched;             // matched-comparison search result (null when off)
   int grid = 0;                       // the patch grid the case drew (a tuned search's choice); 0: the case's own
+  ParamValues params;                 // the parameters the case drew (after a matched or tuned search)
   std::vector<std::string> images;    // relative to the run dir
   double seconds = 0;
   // Timing modes other than shaded: mode -> frames in the order of `frames`.

@@ -110,21 +110,13 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   if (options.progress)
     std::fprintf(stderr, "lodbench: %zu cases on %s -> %s\n", cases.size(), ctx.props.deviceName, totals.dir.c_str());
   std::vector<FrameMetrics> costFrames;  // this invocation's measured frames, their pass costs only
-  for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
-    const Case& c = cases[i];
-    std::string caseFile = totals.dir + "/cases/" + c.id + ".json";
-    if (plan.reuse.count(c.id)) {  // finished with the same inputs (digest)
-      totals.resumed++;
-      totals.ok++;
-      continue;
-    }
-    progress.startCase(i, c.id);
-    CaseResult r;
+  // One case under `cfg`: its result, a failure or skip recorded; false when interrupted.
+  auto attempt = [&](const Case& c, const Config& cfg, SweepProgress* p, CaseResult& r) {
     try {
-      r = runCase(ctx, c, config, totals.dir + "/images", &progress, refs);
+      r = runCase(ctx, c, cfg, totals.dir + "/images", p, refs);
     } catch (const Interrupted&) {
       totals.interrupted = true;
-      break;
+      return false;
     } catch (const FeatureMissing& e) {
       r.status = "skipped";
       r.reason = e.what();
@@ -137,12 +129,37 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
         createContext(ctx, {config.device, options.validation, config.deviceWhere});
       }
     }
-    progress.endCase(r.status == "ok");
+    return true;
+  };
+  // Interleaved repetitions (Config::interleave): the first round runs every case with one
+  // repetition as usual (search, measurement, images); each later round times every case once
+  // more with the first round's parameters and grid (no search, measurement or images), its frames
+  // appended as the next repetition. Cases are written after the last round.
+  const bool interleaved = config.interleave && config.repetitions > 1;
+  Config firstRound = config;
+  if (interleaved) firstRound.repetitions = 1;
+  std::vector<std::pair<size_t, CaseResult>> held;  // interleaved: cases waiting for their rounds
+  auto finish = [&](const Case& c, CaseResult& r) {
     for (const FrameMetrics& m : r.metrics) {
       FrameMetrics cost;
       cost.costs = m.costs;
       costFrames.push_back(std::move(cost));
     }
+    (r.status == "ok" ? totals.ok : r.status == "skipped" ? totals.skipped : totals.failed)++;
+    writeFileAtomic(totals.dir + "/cases/" + c.id + ".json", caseJson(c, r).dump(1));
+    writeAggregates(totals.dir, context);
+  };
+  for (size_t i = 0; i < cases.size() && !totals.interrupted; ++i) {
+    const Case& c = cases[i];
+    if (plan.reuse.count(c.id)) {  // finished with the same inputs (digest)
+      totals.resumed++;
+      totals.ok++;
+      continue;
+    }
+    progress.startCase(i, c.id);
+    CaseResult r;
+    if (!attempt(c, firstRound, &progress, r)) break;
+    progress.endCase(r.status == "ok");
     if (options.progress) {
       json sum = caseSummary(r);
       if (r.status == "ok" && sum.contains("gpu_ms"))
@@ -152,10 +169,41 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
       else
         std::fprintf(stderr, "\r    %s: %s\n", r.status.c_str(), r.reason.c_str());
     }
-    (r.status == "ok" ? totals.ok : r.status == "skipped" ? totals.skipped : totals.failed)++;
-    writeFileAtomic(caseFile, caseJson(c, r).dump(1));
-    writeAggregates(totals.dir, context);
+    if (interleaved)
+      held.emplace_back(i, std::move(r));
+    else
+      finish(c, r);
   }
+  for (int round = 2; interleaved && round <= config.repetitions && !totals.interrupted; ++round) {
+    Config later = config;
+    later.repetitions = 1;
+    later.match = {};
+    later.measure.every = 0;
+    later.images.modes.clear();
+    later.timing.energy = false;
+    for (auto& [i, r] : held) {
+      if (r.status != "ok" || totals.interrupted) continue;
+      Case c = cases[i];
+      c.params = r.params;
+      if (r.grid > 0) c.grid = r.grid;
+      c.tune.clear();
+      if (options.progress) std::fprintf(stderr, "  round %d/%d: %s\n", round, config.repetitions, cases[i].id.c_str());
+      CaseResult more;
+      if (!attempt(c, later, nullptr, more)) break;
+      if (more.status != "ok") {
+        r.status = more.status;
+        r.reason = "round " + std::to_string(round) + ": " + more.reason;
+        continue;
+      }
+      r.frames.insert(r.frames.end(), more.frames.begin(), more.frames.end());
+      for (auto& [mode, frames] : more.modeFrames)
+        r.modeFrames[mode].insert(r.modeFrames[mode].end(), frames.begin(), frames.end());
+      r.seconds += more.seconds;
+    }
+  }
+  // An interrupted interleaved sweep keeps none of its unfinished cases: a resume runs them anew.
+  if (!totals.interrupted)
+    for (auto& [i, r] : held) finish(cases[i], r);
   // What each scheme's work cost in this invocation (the ETA's figures), to size configs by.
   RunEnd end;
   end.costs = json::object();
