@@ -29,22 +29,47 @@
 // split nor keep their parents split; as in LEB2D they are still drawn. Left out: the demo's
 // flatness test, whose threshold is in world units.
 //
+// Pool. The renderer holds C = min(pool, 2^D, the device's most) instance records, one a leaf: a
+// tree of depth D never has more than 2^D leaves, and the pool is the view budget's. At rest a
+// leaf's micro-hypotenuses project to at least t/2 px, its micro-triangles to t^2/16 px^2 or more
+// seen face on, so a W x H viewport shows at most 16 W H / (4^s t^2) leaves face on; foreshortened
+// ground, the frustum's border and a frame's lag of merges add more. The pool is 4 times that,
+// rounded up to a power of two, at least 2^17. Source: large_cbt (Benyoub & Dupuy 2024) keeps a
+// fixed pool of 128K (its default), 256K, 512K or 1M bisectors (demo/include/cbt/ocbt_*.h), each
+// drawn as one triangle of about T = 60 px^2: 128K x 60 px^2 is 3.8 screens of 1920 x 1080, the 4
+// here. A bisector is a leaf of 4^s triangles here, and at 1920 x 1080, subd 3 the rule gives the
+// source's four pools from t >= 4, 2.8, 2.0 and 1.4 px: 128K at the default t = 7, 2^23 (8M, 256
+// MiB of records) at t = 0.5, the parameter's least; larger viewports get more, past the source's
+// 1M. The device's most: maxStorageBufferRange and maxMemoryAllocationSize over 32 bytes a record,
+// and maxComputeWorkGroupCount[0] x 64 leaves a dispatch; a pool they cut is recorded
+// (cbt_capacity_clamped). Leaves past C are neither updated nor drawn: the batch pass counts them
+// as overflow and the case fails ("LOD state overflow"; a matched search records the trial and goes
+// on). `pool` > 0 replaces the rule (a sweep over the source's four, say); cbt_pool records the one
+// asked for.
+//
+// Depth limit. kMaxDepth = 27 keeps the state (2^(D - 1) bytes) within 64 MiB; the H100's largest
+// terrain, 32759^2, is L = 16 at cells_per_texel 2 and fits at subd 3 or more (D = 27). A deeper
+// tree is an InputError that names the least subd and the most cells_per_texel that fit.
+//
 // Parameters: tri_size t = 7 px and subd s = 3 (64 triangles a leaf) are LEB2D's defaults.
 #include "schemes/cbt.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "error.h"
+#include "number_text.h"
 #include "shaders/cbt_params.h"
 #include "terrain/heightfield.h"
 
 namespace lb {
 namespace {
 
-constexpr uint32_t kMaxDepth = 27;  // 16 MiB of bits, 32 MiB of sums
-constexpr uint32_t kMaxRecords = 1u << 20;
+constexpr uint32_t kMaxDepth = 27;                // 16 MiB of bits, 16 MiB of their copy, 32 MiB of sums
+constexpr uint64_t kMinPool = uint64_t(1) << 17;  // large_cbt's smallest and default pool, 128K bisectors
+constexpr double kPoolHeadroom = 4;               // the source's 128K x 60 px^2 over a 1920 x 1080 screen: 3.8
 
 uint32_t floatBits(float f) {
   uint32_t u;
@@ -77,22 +102,48 @@ Footprint leafMesh(int s) {
 
 }  // namespace
 
-GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, uint32_t perDraw) {
+uint64_t cbtViewPool(const GpuLodBudget& budget, const ParamValues& v) {
+  if (budget.viewportWidth == 0 || budget.viewportHeight == 0)
+    throw std::logic_error("cbt: the view budget names no viewport");
+  const double t = v.at("tri_size"), faceOn = std::ldexp(1.0, 2 * int(v.at("subd"))) * t * t / 16.0;
+  const double leaves = kPoolHeadroom * double(budget.viewportWidth) * double(budget.viewportHeight) / faceOn;
+  uint64_t pool = kMinPool;
+  while (double(pool) < leaves && pool < (uint64_t(1) << 31)) pool *= 2;
+  return pool;
+}
+
+GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, const GpuLodBudget& budget, uint32_t perDraw) {
   const int s = int(v.at("subd"));
   const double cells = double(std::max(hf.width, hf.height) - 1) * v.at("cells_per_texel");
   const uint32_t L = std::max(uint32_t(std::ceil(std::log2(std::max(cells, 1.0)) - 1e-9)), uint32_t(s) + 2);
   const uint32_t D = 2 * (L - uint32_t(s)) + 1;
-  if (D > kMaxDepth)
-    throw InputError("cbt: a tree of depth " + std::to_string(D) + " (terrain of " + std::to_string(cells) +
-                     " cells, subd " + std::to_string(s) + ") exceeds depth " + std::to_string(kMaxDepth) +
-                     ": raise subd or lower cells_per_texel");
+  if (D > kMaxDepth) {
+    // D <= kMaxDepth while L <= (kMaxDepth - 1) / 2 + s: the least subd, and the most cells a side.
+    const uint32_t maxL = (kMaxDepth - 1) / 2 + uint32_t(s);
+    const int leastSubd = int(L) - int((kMaxDepth - 1) / 2);
+    const std::string most =
+        numberText(std::floor(std::ldexp(1000.0, int(maxL)) / double(std::max(hf.width, hf.height) - 1)) / 1000.0);
+    throw InputError("cbt: a tree of depth " + std::to_string(D) + " (2^" + std::to_string(L) +
+                     " lattice units a side: " + std::to_string(std::max(hf.width, hf.height) - 1) +
+                     " sample spacings x cells_per_texel " + numberText(v.at("cells_per_texel")) + ", subd " +
+                     std::to_string(s) + ") exceeds depth " + std::to_string(kMaxDepth) +
+                     ", the deepest state cbt keeps (64 MiB); " +
+                     (leastSubd <= 5 ? "raise subd to " + std::to_string(leastSubd) + " or " : std::string()) +
+                     "lower cells_per_texel to " + most + " or less");
+  }
   GpuLod g;
   g.footprint = leafMesh(s);
   const uint32_t words = 1u << (D - 5), sums = LB_CBT_HEADER + 2 * words;
   std::vector<uint32_t>& st = g.initialState;
   st.assign(size_t(sums) + (size_t(1) << (D - 4)), 0u);
   const uint32_t leaves = 2;
-  g.maxInstances = std::min(kMaxRecords, 1u << std::min(D, 31u));
+  // The pool rule (the head comment): the parameter or the view budget's, within the tree's 2^D
+  // leaves and the device's most.
+  const uint64_t pool = v.at("pool") > 0 ? uint64_t(v.at("pool")) : cbtViewPool(budget, v);
+  const uint64_t wanted = std::min(pool, uint64_t(1) << D);
+  const uint64_t deviceMost =
+      std::min(budget.maxRecordBytes / sizeof(InstanceRecord), uint64_t(budget.maxDispatchGroups) * LB_CBT_GROUP);
+  g.maxInstances = uint32_t(std::min({wanted, deviceMost, uint64_t(UINT32_MAX)}));
   st[LB_CBT_DEPTH] = D;
   st[LB_CBT_LATTICE_LOG2] = L;
   st[LB_CBT_CAPACITY] = g.maxInstances;
@@ -118,11 +169,14 @@ GpuLod cbtTree(const Heightfield& hf, const ParamValues& v, uint32_t perDraw) {
   g.passes.push_back({.shader = "cbt_records", .indirectWord = LB_CBT_DISPATCH});
   g.convergeLimit = 2 * D + 8;
   g.overflowWord = LB_CBT_OVERFLOW;
+  g.capacityWord = LB_CBT_CAPACITY;
   g.treeFirstWord = LB_CBT_HEADER, g.treeWordCount = words;  // the leaf bitfield: the tree
   g.facts = {{"cbt_depth", double(D)},
              {"cbt_lattice_log2", double(L)},
              {"cbt_state_bytes", double(st.size() * sizeof(uint32_t))},
-             {"cbt_capacity", double(g.maxInstances)}};
+             {"cbt_pool", double(pool)},
+             {"cbt_capacity", double(g.maxInstances)},
+             {"cbt_capacity_clamped", g.maxInstances < wanted ? 1.0 : 0.0}};
   return g;
 }
 
@@ -133,7 +187,10 @@ const std::vector<ParamSpec>& cbtParams() {
       {"subd", LB_CBT_SUBD, 3, 0, 5, true, "each leaf is drawn as 4^subd triangles"},
       {"cells_per_texel", LB_CBT_CELLS_PER_TEXEL, 1, 0.25, 16, false,
        "finest micro-triangle legs per heightfield sample spacing (sets the tree's depth)"},
-      {"cull", LB_CBT_CULL, 1, 0, 1, true, "1 = leaves outside the frustum merge and never split"}};
+      {"cull", LB_CBT_CULL, 1, 0, 1, true, "1 = leaves outside the frustum merge and never split"},
+      {"pool", LB_CBT_POOL, 0, 0, double(uint64_t(1) << kMaxDepth), true,
+       "leaf records the renderer holds (large_cbt's bisector pool: 131072 ... 1048576); 0 = from the view "
+       "budget, 4 x viewport px / (4^subd tri_size^2 / 16), within 2^depth and the device's limits"}};
   return kParams;
 }
 
@@ -163,7 +220,9 @@ class Cbt : public Scheme {
 
   double targetAreaPx(const ParamValues& v) const override { return cbtTargetAreaPx(v); }
 
-  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override { return cbtTree(hf, v, 0); }
+  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v, const GpuLodBudget& budget) const override {
+    return cbtTree(hf, v, budget, 0);
+  }
 };
 
 }  // namespace

@@ -35,9 +35,9 @@ class CbtTs : public Scheme {
     return kInfo;
   }
   double targetAreaPx(const ParamValues& v) const override { return cbtTargetAreaPx(v); }
-  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override {
+  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v, const GpuLodBudget& budget) const override {
     const uint32_t n = 1u << uint32_t(v.at("subd"));
-    GpuLod g = cbtTree(hf, v, kMaxVerticesPerDraw / ((n + 1) * (n + 1)));
+    GpuLod g = cbtTree(hf, v, budget, kMaxVerticesPerDraw / ((n + 1) * (n + 1)));
     // One patch a leaf: control points a, b, c picked by the vertex shader from the record.
     g.footprint = {"patch", {{1.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 1.0f}}, {0, 1, 2}};
     g.initialState[LB_CBT_INDEX_COUNT] = 3;

@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // cbt, pass 3 of 4, one thread: the leaf count the reduction left becomes the draw's instance count
-// (up to the records' capacity; the rest is counted as overflow) and the size of the next per-leaf
-// dispatches; the update count moves on, alternating split and merge. PER_DRAW > 0 (cbt-ts): the
+// and the size of the next per-leaf dispatches, both up to the records' capacity (the leaves past it
+// are neither updated nor drawn, and counted as overflow: the case fails, and no dispatch outgrows
+// the device's limit); the update count moves on, alternating split and merge. PER_DRAW > 0 (cbt-ts): the
 // instances are split into draws of at most PER_DRAW, ceil(capacity / PER_DRAW) commands of room
 // and their count after them (vkCmdDrawIndexedIndirectCount).
 #include "cbt.glsl"
@@ -27,7 +28,7 @@ void main() {
   uint drawn = min(leaves, capacity);
   state.words[LB_CBT_LEAVES] = leaves;
   state.words[LB_CBT_OVERFLOW] = leaves - drawn;
-  state.words[LB_CBT_DISPATCH] = (leaves + LB_CBT_GROUP - 1u) / LB_CBT_GROUP;
+  state.words[LB_CBT_DISPATCH] = (drawn + LB_CBT_GROUP - 1u) / LB_CBT_GROUP;
   state.words[LB_CBT_DISPATCH + 1] = 1u;
   state.words[LB_CBT_DISPATCH + 2] = 1u;
   state.words[LB_CBT_UPDATES] += 1u;

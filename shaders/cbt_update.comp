@@ -1,9 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// cbt, pass 1 of 4, one thread per leaf: on even updates split the leaves the rule asks to split,
-// conformingly; on odd updates merge the diamonds whose two parents the rule would not split. Only
-// atomicOr on even and atomicAnd on odd updates touch the bitfield, and every decision reads the
-// previous update's reduction, so the result does not depend on the order threads run in.
+// cbt, pass 1 of 4, one thread per leaf (up to the capacity: cbt_batch.comp): on even updates split
+// the leaves the rule asks to split, conformingly; on odd updates merge the diamonds whose two
+// parents the rule would not split. Only atomicOr on even and atomicAnd on odd updates touch the
+// bitfield, and every decision reads the previous update's reduction, so the result does not depend
+// on the order threads run in.
 #include "cbt.glsl"
 
 layout(local_size_x = LB_CBT_GROUP) in;

@@ -29,7 +29,7 @@ class GpuUniform : public lb::Scheme {
     };
     return kInfo;
   }
-  lb::GpuLod gpuLod(const lb::Heightfield& hf, const lb::ParamValues& v) const override {
+  lb::GpuLod gpuLod(const lb::Heightfield& hf, const lb::ParamValues& v, const lb::GpuLodBudget&) const override {
     auto grid =
         lb::uniformInstancedScheme().instancedLod(hf, {{"level", v.at("level")}, {"diagonal", 2}, {"split", 1}});
     lb::GpuLod g;

@@ -21,10 +21,10 @@ class FinitePool : public Scheme {
  public:
   explicit FinitePool(double limit) : limit_(limit) {}
   const SchemeInfo& info() const override { return gpuUniformScheme().info(); }
-  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v) const override {
+  GpuLod gpuLod(const Heightfield& hf, const ParamValues& v, const GpuLodBudget& budget) const override {
     if (v.at("level") > limit_)
       throw std::runtime_error("planted pool overflow at level " + std::to_string(int(v.at("level"))));
-    return gpuUniformScheme().gpuLod(hf, v);
+    return gpuUniformScheme().gpuLod(hf, v, budget);
   }
 
  private:

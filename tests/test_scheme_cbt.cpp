@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "cbt_reference.h"
+#include "error.h"
 #include "gpu_fixture.h"
 #include "metrics/mesh_cracks.h"
 #include "replay/lod_replay.h"
@@ -191,6 +192,120 @@ TEST_F(Cbt, LeavesBeyondTheCapacityFailTheReplay) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("LOD state overflow"), std::string::npos) << e.what();
   }
+}
+
+namespace {
+// A heightfield's shape alone: cbtTree reads the size and the height range, never the samples.
+Heightfield shape(int samples) {
+  Heightfield hf;
+  hf.width = hf.height = samples;
+  hf.minHeight = 0.0f, hf.maxHeight = 100.0f;
+  return hf;
+}
+GpuLod cbtLod(int samples, const ParamValues& given, const GpuLodBudget& budget, const char* scheme = "cbt") {
+  const Scheme& s = *findScheme(scheme);
+  return s.gpuLod(shape(samples), resolveParams(s.info(), given), budget);
+}
+double fact(const GpuLod& g, const std::string& key) {
+  for (const auto& [k, v] : g.facts)
+    if (k == key) return v;
+  ADD_FAILURE() << "no fact " << key;
+  return -1;
+}
+}  // namespace
+
+// The pool rule (schemes/cbt.cpp): capacity = min(pool, 2^D, the device's most), the pool 4 x the
+// viewport's face-on leaves at tri_size, a power of two of at least 2^17; large_cbt's four pools
+// come out at 1920 x 1080, subd 3 between t = 4 and 1.4 px, 8M at the least t.
+TEST(CbtPool, CapacityFollowsTheTerrainTheViewBudgetAndTheDevice) {
+  const GpuLodBudget hd{1920, 1080};
+  struct Row {
+    int samples;
+    double t;
+    uint32_t depth, pool, capacity;
+  };
+  for (const Row& r : {Row{257, 7, 11, 1u << 17, 1u << 11}, Row{4097, 7, 19, 1u << 17, 1u << 17},
+                       Row{4097, 0.5, 19, 1u << 23, 1u << 19}, Row{16385, 7, 23, 1u << 17, 1u << 17},
+                       Row{16385, 4, 23, 1u << 17, 1u << 17}, Row{16385, 2.9, 23, 1u << 18, 1u << 18},
+                       Row{16385, 2, 23, 1u << 19, 1u << 19}, Row{16385, 1.5, 23, 1u << 20, 1u << 20},
+                       Row{16385, 0.5, 23, 1u << 23, 1u << 23}}) {
+    for (const char* scheme : {"cbt", "cbt-ts"}) {
+      const GpuLod g = cbtLod(r.samples, {{"tri_size", r.t}}, hd, scheme);
+      const std::string at = std::string(scheme) + " " + std::to_string(r.samples) + "^2 t " + std::to_string(r.t);
+      EXPECT_EQ(fact(g, "cbt_depth"), r.depth) << at;
+      EXPECT_EQ(fact(g, "cbt_pool"), r.pool) << at;
+      EXPECT_EQ(g.maxInstances, r.capacity) << at;
+      EXPECT_EQ(g.initialState[LB_CBT_CAPACITY], r.capacity) << at;
+      EXPECT_EQ(fact(g, "cbt_capacity"), r.capacity) << at;
+      EXPECT_EQ(fact(g, "cbt_capacity_clamped"), 0) << at;
+      EXPECT_EQ(g.capacityWord, LB_CBT_CAPACITY) << at;
+      const uint32_t perDraw = kMaxVerticesPerDraw / 81;  // cbt-ts at subd 3
+      EXPECT_EQ(g.maxDraws, std::string(scheme) == "cbt" ? 1u : (r.capacity + perDraw - 1) / perDraw) << at;
+    }
+  }
+  // A larger viewport asks for more; the parameter replaces the rule, within the tree.
+  EXPECT_EQ(cbtLod(16385, {}, {3840, 2160}).maxInstances, 1u << 18);
+  EXPECT_EQ(cbtLod(16385, {{"pool", 262144}}, hd).maxInstances, 262144u);
+  EXPECT_EQ(cbtLod(16385, {{"tri_size", 0.5}, {"pool", 131072}}, hd).maxInstances, 131072u);
+  EXPECT_EQ(cbtLod(257, {{"pool", 1048576}}, hd).maxInstances, 2048u);
+  // The device's most: 32 bytes a record in one storage buffer, 64 leaves a workgroup of one dispatch.
+  GpuLod small = cbtLod(16385, {{"tri_size", 0.5}}, {1920, 1080, 32ull << 20});
+  EXPECT_EQ(small.maxInstances, 1u << 20);
+  EXPECT_EQ(fact(small, "cbt_pool"), 1u << 23);
+  EXPECT_EQ(fact(small, "cbt_capacity_clamped"), 1);
+  GpuLod dispatch = cbtLod(16385, {{"tri_size", 0.5}}, {1920, 1080, UINT64_MAX, 65535});
+  EXPECT_EQ(dispatch.maxInstances, 65535u * 64u);
+  EXPECT_EQ(fact(dispatch, "cbt_capacity_clamped"), 1);
+}
+
+// The deepest state: the H100's largest terrain, 32759^2 at cells_per_texel 2 (L = 16), fits at subd
+// 3 (D = 27); at subd 2 the InputError names the fix.
+TEST(CbtPool, TheLargestTerrainFitsAtSubd3AndADeeperTreeNamesTheFix) {
+  const GpuLodBudget hd{1920, 1080};
+  const GpuLod g = cbtLod(32759, {{"cells_per_texel", 2}, {"tri_size", 0.5}}, hd);
+  EXPECT_EQ(fact(g, "cbt_depth"), 27);
+  EXPECT_EQ(g.maxInstances, 1u << 23);
+  EXPECT_EQ(fact(g, "cbt_state_bytes"), double((64u << 20) + LB_CBT_HEADER * 4));
+  try {
+    cbtLod(32759, {{"cells_per_texel", 2}, {"subd", 2}}, hd);
+    ADD_FAILURE() << "depth 29 passed";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("depth 29"), std::string::npos) << what;
+    EXPECT_NE(what.find("raise subd to 3 or lower cells_per_texel to 1 or less"), std::string::npos) << what;
+  }
+}
+
+// A tiny pool overflows on the GPU and fails the replay (the batch pass counts the leaves past it and
+// sizes no dispatch beyond it); the rule's pool does not, and a state claiming more room than the
+// renderer holds is refused.
+TEST_F(Cbt, ATinyPoolOverflowsAndTheRulesPoolDoesNot) {
+  const Heightfield& hf = testTerrain();
+  const CameraPose pose = overviewPose();
+  Renderer tiny(gpu(), hf, {160, 90, 16}), ruled(gpu(), hf, {160, 90, 16});
+  tiny.setScheme(cbtScheme(), {{"pool", 8}});
+  ruled.setScheme(cbtScheme(), {});
+  EXPECT_EQ(tiny.lodCapacity(), 8u);
+  const std::vector<uint32_t> initial = ruled.readLodState();
+  EXPECT_EQ(ruled.lodCapacity(), std::min(1u << 17, 1u << initial[LB_CBT_DEPTH]));
+  convergeLod(ruled, pose);
+  EXPECT_EQ(ruled.lodOverflow(), 0u);
+  const std::vector<uint32_t> settled = ruled.readLodState();
+  ASSERT_GT(settled[LB_CBT_LEAVES], 8u);
+  convergeLod(tiny, pose);
+  const std::vector<uint32_t> st = tiny.readLodState();
+  EXPECT_GT(tiny.lodOverflow(), 0u);
+  EXPECT_EQ(st[LB_CBT_OVERFLOW], st[LB_CBT_LEAVES] - 8u);
+  EXPECT_EQ(st[LB_CBT_DISPATCH], 1u) << "a dispatch past the capacity";
+  tiny.snapshotLodState();
+  LodReplay replay(tiny, [&](int) { return pose; }, {});
+  try {
+    replay.advanceTo(0);
+    ADD_FAILURE() << "the overflow passed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("LOD state overflow"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(tiny.loadLodState(settled), std::logic_error);
 }
 
 // converged_state_sha256 is the tree's (the leaf bitfield), not the header's: the terrain scaled by

@@ -73,11 +73,22 @@ struct GpuLodPass {
   // an earlier pass or frame wrote there), and `groups` is ignored.
   int64_t indirectWord = -1;
 };
+// What a GPU-indirect scheme may size its instance records by (Renderer::createGpuLod fills it):
+// the view budget, that is the LOD viewport in pixels, and the device's limits on the record
+// buffer (one storage buffer, one allocation) and on the workgroups of one dispatch.
+struct GpuLodBudget {
+  uint32_t viewportWidth = 0, viewportHeight = 0;
+  uint64_t maxRecordBytes = UINT64_MAX;     // min(maxStorageBufferRange, maxMemoryAllocationSize)
+  uint32_t maxDispatchGroups = UINT32_MAX;  // maxComputeWorkGroupCount[0]
+};
 struct GpuLod {
   Footprint footprint;                 // the mesh every instance draws (its indices: the args' indexCount)
   std::vector<uint32_t> initialState;  // LB_BINDING_LOD_STATE after a reset
   uint32_t maxInstances = 0;           // room for the records the passes write
-  std::vector<GpuLodPass> passes;      // every frame, in order, with barriers between them
+  // >= 0: the state word the passes read maxInstances from; Renderer::loadLodState refuses a state
+  // that claims more room than this renderer's buffer has.
+  int64_t capacityWord = -1;
+  std::vector<GpuLodPass> passes;  // every frame, in order, with barriers between them
   // Stateful schemes (a tree the passes refine a little every frame) set the most updates that may
   // reach a static camera's fixed point: the harness converges, snapshots and replays their state
   // (replay/lod_replay.h). 0: the passes' output depends on the frame alone.

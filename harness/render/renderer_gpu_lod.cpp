@@ -10,6 +10,7 @@
 #include "render/renderer.h"
 #include "shaders/shared.h"
 #include "vk/context.h"
+#include "vk/device_limits.h"
 #include "vk/resources.h"
 #include "vk/vk_check.h"
 
@@ -17,7 +18,15 @@ namespace lb {
 
 void Renderer::createGpuLod() {
   const std::string& name = scheme_->info().name;
-  gpuLod_ = scheme_->gpuLod(terrain_, params_);
+  // The view budget is the LOD viewport (the case's resolution wherever the two differ); the
+  // records live in one storage buffer of one allocation, written by one dispatch per pass.
+  GpuLodBudget budget;
+  budget.viewportWidth = uint32_t(settings_.lodWidth > 0 ? settings_.lodWidth : settings_.width);
+  budget.viewportHeight = uint32_t(settings_.lodHeight > 0 ? settings_.lodHeight : settings_.height);
+  budget.maxRecordBytes =
+      std::min<uint64_t>(ctx_.props.limits.maxStorageBufferRange, deviceLimits(ctx_.physicalDevice).maxAllocationBytes);
+  budget.maxDispatchGroups = ctx_.props.limits.maxComputeWorkGroupCount[0];
+  gpuLod_ = scheme_->gpuLod(terrain_, params_, budget);
   const Footprint& f = gpuLod_.footprint;
   const bool tessellated = !scheme_->info().tesc.empty();  // one patch a leaf (cbt-ts)
   if (f.indices.empty() || f.indices.size() % 3 != 0 || gpuLod_.maxInstances == 0 || gpuLod_.passes.empty() ||
@@ -64,8 +73,12 @@ void Renderer::createGpuLod() {
   gpuIndirect_ = true;
   lodFrozen_ = false;
   lastLodInstances_ = lastLodOverflow_ = 0;
-  if (gpuLod_.overflowWord >= int64_t(gpuLod_.initialState.size()))
-    throw std::logic_error("scheme '" + name + "': overflow word outside the state");
+  if (gpuLod_.overflowWord >= int64_t(gpuLod_.initialState.size()) ||
+      gpuLod_.capacityWord >= int64_t(gpuLod_.initialState.size()))
+    throw std::logic_error("scheme '" + name + "': overflow or capacity word outside the state");
+  if (VkDeviceSize(sizeof(InstanceRecord)) * gpuLod_.maxInstances > budget.maxRecordBytes)
+    throw std::logic_error("scheme '" + name + "': " + std::to_string(gpuLod_.maxInstances) +
+                           " instance records exceed the device's largest storage buffer");
 }
 
 void Renderer::recordLodPasses(VkCommandBuffer cmd, uint32_t dynOffset) {
@@ -156,6 +169,10 @@ void Renderer::loadLodState(const std::vector<uint32_t>& words) {
   if (words.size() != gpuLod_.initialState.size())
     throw std::logic_error("loadLodState: " + std::to_string(words.size()) + " words, the state has " +
                            std::to_string(gpuLod_.initialState.size()));
+  if (gpuLod_.capacityWord >= 0 && words[size_t(gpuLod_.capacityWord)] > gpuLod_.maxInstances)
+    throw std::logic_error("loadLodState: the state claims room for " +
+                           std::to_string(words[size_t(gpuLod_.capacityWord)]) + " instances, this renderer holds " +
+                           std::to_string(gpuLod_.maxInstances));
   finish();
   Buffer from = createBufferWithData(ctx_, words.data(), VkDeviceSize(words.size() * sizeof(uint32_t)),
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT);

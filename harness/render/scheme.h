@@ -141,8 +141,9 @@ class Scheme {
   // DrawPath::InstancedGrid: the per-terrain LOD state (footprints, trees, tables) that selects
   // each frame's instances on the CPU. Built once per setScheme.
   virtual std::unique_ptr<InstancedLod> instancedLod(const Heightfield&, const ParamValues&) const { return nullptr; }
-  // DrawPath::GpuIndirect: the footprint, the initial LOD state and the compute passes.
-  virtual GpuLod gpuLod(const Heightfield&, const ParamValues&) const { return {}; }
+  // DrawPath::GpuIndirect: the footprint, the initial LOD state and the compute passes; the records'
+  // capacity may follow from the view budget and must stay within the device's limits (`budget`).
+  virtual GpuLod gpuLod(const Heightfield&, const ParamValues&, const GpuLodBudget& /*budget*/) const { return {}; }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.
