@@ -210,4 +210,15 @@ TEST(SuiteVerdict, InterleavedRoundsRunEveryCaseOncePerRound) {
   ASSERT_EQ(v.code, 0) << v.text;
   const nlohmann::json j = lb::test::readJson(run + "/verdict.json");
   EXPECT_TRUE(j["workloads"][0]["no_interval"].empty()) << j.dump(2);
+  // The report opens with the verdict, which `report` writes beside it first.
+  std::filesystem::remove(run + "/verdict.json");
+  lb::test::CliOut rep = lb::test::lodbench("report " + run + " --no-html");
+  ASSERT_EQ(rep.code, 0) << rep.text;
+  EXPECT_TRUE(std::filesystem::exists(run + "/verdict.json"));
+  std::ifstream md(run + "/report/report.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), {});
+  const size_t verdict = text.find("## Verdict"), context = text.find("## Context");
+  ASSERT_NE(verdict, std::string::npos) << text.substr(0, 2000);
+  EXPECT_LT(verdict, context) << "the verdict opens the report";
+  EXPECT_NE(text.find("By workload: "), std::string::npos);
 }

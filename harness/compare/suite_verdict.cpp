@@ -252,16 +252,20 @@ std::vector<Workload> runWorkloads(const RunData& run) {
   return out;
 }
 
+SuiteVerdict writeVerdict(const std::string& dir, double confidence) {
+  RunData run = loadRun(dir);
+  SuiteVerdict v = suiteVerdict(runWorkloads(run), confidence);
+  nlohmann::json j = verdictJson(v);
+  j["run_dir"] = dir;
+  j["context"] = {{"device", run.context.value("device", "")}, {"driver", run.context.value("driver", "")}};
+  writeFileAtomic((std::filesystem::path(dir) / "verdict.json").string(), j.dump(2) + "\n");
+  return v;
+}
+
 int verdictCommand(const std::vector<std::string>& runDirs, double confidence) {
   for (const std::string& dir : runDirs) {
-    RunData run = loadRun(dir);
-    SuiteVerdict v = suiteVerdict(runWorkloads(run), confidence);
-    nlohmann::json j = verdictJson(v);
-    j["run_dir"] = dir;
-    j["context"] = {{"device", run.context.value("device", "")}, {"driver", run.context.value("driver", "")}};
-    const std::string file = (std::filesystem::path(dir) / "verdict.json").string();
-    writeFileAtomic(file, j.dump(2) + "\n");
-    std::printf("%s\n", file.c_str());
+    SuiteVerdict v = writeVerdict(dir, confidence);
+    std::printf("%s\n", (std::filesystem::path(dir) / "verdict.json").string().c_str());
     std::printf("| scheme | geometric-mean ratio [%g %% interval] | workloads | wins | ties | missing |\n",
                 100 * confidence);
     std::printf("|---|---|---:|---:|---:|---:|\n");

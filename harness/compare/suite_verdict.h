@@ -81,6 +81,9 @@ struct RunData;
 // whose target was unreachable (the closest value tried and what it reached).
 std::vector<Workload> runWorkloads(const RunData& run);
 
+// Writes RUN-DIR/verdict.json and returns the verdict (InputError for a directory that is not a run).
+SuiteVerdict writeVerdict(const std::string& runDir, double confidence);
+
 // `lodbench verdict RUN-DIR...`: writes RUN-DIR/verdict.json for each run and prints its table;
 // returns 0, or throws InputError for a directory that is not a run.
 int verdictCommand(const std::vector<std::string>& runDirs, double confidence);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "report/equal_error.h"
@@ -127,6 +129,48 @@ void equalErrorPart(Writer& w, const ReportRun& run, const std::vector<Chart>& c
   chartBoxes(w, "equal-error", charts);
 }
 
+// The run's verdict.json (`lodbench verdict`, written before the report by `lodbench report`):
+// the ranking with intervals, where it holds and where it flips, "no verdict" where they overlap.
+void verdictPart(Writer& w, const ReportRun& run) {
+  const std::filesystem::path file = std::filesystem::path(run.dir) / "verdict.json";
+  std::ifstream in(file);
+  if (!in) return;
+  nlohmann::json v = nlohmann::json::parse(in, nullptr, false);
+  if (v.is_discarded() || !v.contains("schemes") || !v.contains("workloads")) return;
+  w.heading(2, "Verdict", "verdict");
+  const double conf = v.value("confidence", 0.95);
+  auto fmt = [](const nlohmann::json& x) { return x.is_number() ? formatValue(x.get<double>()) : std::string("–"); };
+  w.para(
+      "Each scheme's cost as a ratio to each workload's cheapest (terrain x path x resolution), its geometric mean "
+      "over the workloads it ran with a " +
+      formatValue(100 * conf) +
+      " % interval, and the workloads it wins (cheapest, every other interval above 1) or ties (intervals "
+      "overlapping: no verdict). Method: " +
+      v.value("method", std::string("")) + ".");
+  Table t;
+  t.header = {"scheme", "geometric-mean ratio", "interval", "workloads", "wins", "ties", "missing in"};
+  t.numeric = {false, true, false, true, true, true, true};
+  for (const auto& s : v["schemes"]) {
+    const nlohmann::json& g = s["geomean_ratio"];
+    std::string interval = g.is_object() && g["lo"].is_number() ? "[" + fmt(g["lo"]) + ", " + fmt(g["hi"]) + "]" : "–";
+    t.rows.push_back({textCell(s.value("scheme", std::string("?"))), textCell(g.is_object() ? fmt(g["value"]) : "–"),
+                      textCell(interval), textCell(std::to_string(s.value("workloads", 0))),
+                      textCell(std::to_string(s.value("wins", 0))), textCell(std::to_string(s.value("ties", 0))),
+                      textCell(std::to_string(s["missing_in"].size()))});
+  }
+  w.table(t, "verdict", true);
+  std::string where;
+  for (const auto& wl : v["workloads"]) {
+    const std::string verdict = wl.value("verdict", std::string(""));
+    where += wl.value("id", std::string("?")) + ": " +
+             (verdict == "no verdict"      ? "no verdict (" + std::to_string(wl["tied"].size()) + " schemes tie)"
+              : verdict == "no scheme ran" ? verdict
+                                           : verdict + " wins") +
+             "; ";
+  }
+  if (!where.empty()) w.para("By workload: " + where.substr(0, where.size() - 2) + ".");
+}
+
 // Scenario runs (configs/scenarios/): what failure to look for, a grid of how badly each
 // scheme shows it, and each case's figure for it with its worst frame.
 void scenarioSection(Writer& w, const ReportRun& run, const std::string& runHref) {
@@ -162,6 +206,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
   w.para("Run directory " + run.dir + ", " + std::to_string(run.cases.size()) + " cases; report written " +
          isoTimeUtc() + ".");
   for (auto& n : notes) w.para(n, "note");
+  verdictPart(w, run);
 
   w.heading(2, "Context", "context");
   w.table(contextTable(run), "context");
