@@ -54,8 +54,18 @@ TuneSpace defaultTuneSpace(const Scheme& scheme) {
   return space;
 }
 
+const Scheme& sphereCopyScheme();
+const Scheme& sphereTwiceScheme();
+
+const std::vector<const Scheme*>& controlSchemes() {
+  static const std::vector<const Scheme*> schemes = {&sphereCopyScheme(), &sphereTwiceScheme()};
+  return schemes;
+}
+
 const Scheme* findScheme(const std::string& name) {
   for (const Scheme* s : allSchemes())
+    if (s->info().name == name) return s;
+  for (const Scheme* s : controlSchemes())
     if (s->info().name == name) return s;
   return nullptr;
 }

@@ -10,6 +10,9 @@
 namespace lb {
 
 const std::vector<const Scheme*>& allSchemes();
+// Control schemes (schemes/controls.cpp): twins of a compared scheme with a known cost ratio, for
+// checking the verdict. findScheme finds them; allSchemes and "all" leave them out.
+const std::vector<const Scheme*>& controlSchemes();
 // nullptr when unknown.
 const Scheme* findScheme(const std::string& name);
 std::string schemeNames();  // "a, b, c" for error messages

@@ -222,3 +222,45 @@ TEST(SuiteVerdict, InterleavedRoundsRunEveryCaseOncePerRound) {
   EXPECT_LT(verdict, context) << "the verdict opens the report";
   EXPECT_NE(text.find("By workload: "), std::string::npos);
 }
+
+// The controls on lavapipe through a real interleaved run: sphere-copy (sphere under another name)
+// ties sphere on every workload, sphere-twice (every timed frame drawn twice) loses with an
+// interval above 1. At 99.9 % confidence a false verdict between the twins is a 1-in-1000 event.
+TEST(SuiteVerdict, ControlsTieAndLoseAsTheyMust) {
+  const std::string dir = lb::test::freshDir("controls");
+  std::filesystem::create_directories(dir);
+  nlohmann::json c = {{"name", "controls"},
+                      {"resolution", {96, 54}},
+                      {"grid", 8},
+                      {"fps", 10},
+                      {"warmup_frames", 2},
+                      {"max_frames", 12},
+                      {"repetitions", 3},
+                      {"interleave", true},
+                      {"terrain", {{"type", "procedural"}, {"size", 129}, {"seed", 2}, {"extent", 1000}}},
+                      {"paths",
+                       {std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/flyover.csv",
+                        std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/lowalt.csv"}},
+                      {"schemes", {"sphere", "sphere-copy", "sphere-twice"}},
+                      {"images", {{"frames", nlohmann::json::array()}, {"modes", nlohmann::json::array()}}},
+                      {"measure", {{"every", 0}}}};
+  std::ofstream(dir + "/controls.json") << c.dump(2);
+  const std::string run = dir + "/run";
+  lb::test::CliOut r = lb::test::lodbench("run " + dir + "/controls.json --out " + run + " -q");
+  ASSERT_EQ(r.code, 0) << r.text;
+  lb::test::CliOut v = lb::test::lodbench("verdict " + run + " --confidence 0.999");
+  ASSERT_EQ(v.code, 0) << v.text;
+  const nlohmann::json j = lb::test::readJson(run + "/verdict.json");
+  ASSERT_EQ(j["workloads"].size(), 2u);
+  for (const auto& w : j["workloads"]) {
+    const auto& tied = w["tied"];
+    EXPECT_NE(std::find(tied.begin(), tied.end(), "sphere"), tied.end()) << w.dump(2);
+    EXPECT_NE(std::find(tied.begin(), tied.end(), "sphere-copy"), tied.end()) << w.dump(2);
+    EXPECT_EQ(w["verdict"], "no verdict") << w.dump(2);
+    const double copy = w["cost_ms"]["sphere-copy"], sphere = w["cost_ms"]["sphere"];
+    EXPECT_NEAR(copy / sphere, 1.0, 0.2) << w.dump(2);
+    const auto& twice = w["ratio"]["sphere-twice"];
+    EXPECT_GT(twice["lo"].get<double>(), 1.0) << w.dump(2);
+    EXPECT_GT(twice["value"].get<double>(), 1.3) << "two draws of a frame cost well over one";
+  }
+}

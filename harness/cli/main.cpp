@@ -40,6 +40,8 @@ using namespace lb;
 
 static int listSchemes() {
   std::fputs(schemeListing(allSchemes()).c_str(), stdout);
+  std::printf("\ncontrols (twins with a known cost ratio, for checking verdicts; not in \"all\"):\n");
+  std::fputs(schemeListing(controlSchemes()).c_str(), stdout);
   return 0;
 }
 

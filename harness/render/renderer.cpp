@@ -249,6 +249,9 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
       }
     }
   }
+  // A control scheme's planted multiple (SchemeInfo::drawRepeat): the whole frame again.
+  if (scheme_ && scheme_->info().drawRepeat > 1 && mode == RenderMode::Shaded && !capture && !slot.readback)
+    for (int k = 1; k < scheme_->info().drawRepeat; ++k) drawAll(pipe);
   vkCmdEndRendering(cmd);
   profiler_.timestampBottom(cmd, slotIndex);
   if (gpuIndirect_) {  // the arguments the passes wrote, for FrameResult::instances

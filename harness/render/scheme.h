@@ -67,6 +67,10 @@ struct SchemeInfo {
   std::string compute;
   // Counted on every measured frame by countFrame(), in this order.
   std::vector<SchemeCounter> counters;
+  // Control schemes only (schemes/controls.cpp): a timed shaded frame issues its draws this many
+  // times, the copies after the statistics query, so its cost is known to be that multiple of its
+  // twin's while its counters and images stay the twin's.
+  int drawRepeat = 1;
 };
 
 using ParamValues = std::map<std::string, double>;
