@@ -35,15 +35,17 @@ vec3 mapNormal(vec2 worldXZ) {
 // GLM's zero-to-one depth) and the length is capped at the viewport's diagonal: every pixel's error
 // is finite, continuous in the geometry, at most the diagonal, and scale-free (the near plane scales
 // with the terrain). docs/results-format.md states the same rule.
+vec2 toPixels(vec4 c) {
+  return c.xy / c.w * 0.5 * frame.viewport.xy;
+}
+
 float screenError(vec3 drawn, vec3 truth) {
   vec4 a = frame.viewProj * vec4(drawn, 1.0), b = frame.viewProj * vec4(truth, 1.0);
-  a.z = max(a.z, 0.0);  // a rasterised point is in front of the near plane up to rounding
-  if (b.z < 0.0) b = mix(a, b, a.z / (a.z - b.z));
-  // A point on the near plane keeps w = near > 0; the cap also bounds what its division yields.
-  vec2 half_ = 0.5 * frame.viewport.xy;
+  float az = max(a.z, 0.0);  // a rasterised point is in front of the near plane up to rounding
+  if (b.z < 0.0) b = mix(a, b, az / (az - b.z));
+  // A point on the near plane keeps w = near > 0; the cap bounds what its projection yields.
   float diagonal = length(frame.viewport.xy);
-  vec2 d = (b.xy / max(b.w, 1e-30) - a.xy / max(a.w, 1e-30)) * half_;
-  float len = length(d);
+  float len = distance(toPixels(a), toPixels(b));
   return isinf(len) || isnan(len) ? diagonal : min(len, diagonal);
 }
 

@@ -39,9 +39,10 @@
 using namespace lb;
 
 static int listSchemes() {
-  std::fputs(schemeListing(allSchemes()).c_str(), stdout);
-  std::printf("\ncontrols (twins with a known cost ratio, for checking verdicts; not in \"all\"):\n");
-  std::fputs(schemeListing(controlSchemes()).c_str(), stdout);
+  // The controls last, in the same columns (their descriptions say what they are).
+  std::vector<const Scheme*> schemes = allSchemes();
+  schemes.insert(schemes.end(), controlSchemes().begin(), controlSchemes().end());
+  std::fputs(schemeListing(schemes).c_str(), stdout);
   return 0;
 }
 

@@ -125,19 +125,20 @@ double measureTickMs(EnergyCounter& counter, double timeoutS) {
   const double deadline = steadySeconds() + timeoutS;
   std::optional<uint64_t> last = counter.readMj();
   int changes = 0;
-  double firstChange = 0;
+  double firstChange = 0, lastChange = 0;
   while (last && steadySeconds() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
     std::optional<uint64_t> v = counter.readMj();
     if (!v) return -1;
     if (*v == *last) continue;
     last = v;
-    if (++changes == 1)
-      firstChange = counter.now();
-    else
-      return 1000.0 * (counter.now() - firstChange);
+    lastChange = counter.now();
+    if (++changes == 1) firstChange = lastChange;
+    // The mean over up to 20 intervals (at most 1 s of them): a poll that wakes late under load
+    // shortens one interval and lengthens the next, so one interval alone can be off by the delay.
+    if (changes > 20 || (changes >= 2 && lastChange - firstChange >= 1.0)) break;
   }
-  return -1;
+  return changes >= 2 ? 1000.0 * (lastChange - firstChange) / double(changes - 1) : -1;
 }
 
 }  // namespace lb

@@ -89,8 +89,9 @@ class NvmlEnergyCounter : public EnergyCounter {
 // (tests), else NVML's for the device.
 std::unique_ptr<EnergyCounter> openEnergyCounter(uint32_t vendorId, const std::string& deviceUuid);
 
-// The counter's tick measured: polls (every 1 ms) until the value has changed twice and returns
-// the time between the two changes in ms; < 0 when it did not change twice within timeoutS.
+// The counter's tick measured: polls (every 1 ms) and returns the mean time between its changes
+// in ms, over up to 20 intervals or the first second of them; < 0 when it did not change twice
+// within timeoutS.
 double measureTickMs(EnergyCounter& counter, double timeoutS);
 
 }  // namespace lb
