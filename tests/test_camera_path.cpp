@@ -223,6 +223,131 @@ TEST(CameraPath, BadFrameRateDoesNotBlameTheFile) {
   }
 }
 
+// Scale-free columns: heights above the ground under the eye in sample spacings (or extents) and
+// horizontal steps in spacings, against a terrain whose ground is known exactly.
+const char* const kGroundHeader =
+    "time,eye_x,eye_z,eye_dx_sp,eye_dz_sp,eye_agl_sp,target_x,target_z,target_dx_sp,target_agl_sp,fov\n";
+
+// A plane rising along x: height = slope * world x (bilinear sampling is exact on it).
+Heightfield rampTerrain(int samples, float extent, float slope) {
+  Heightfield hf;
+  hf.width = hf.height = samples;
+  hf.extent = extent;
+  hf.h.resize(size_t(samples) * size_t(samples));
+  for (int z = 0; z < samples; ++z)
+    for (int x = 0; x < samples; ++x) hf.h[size_t(z) * samples + x] = slope * extent * float(x) / float(samples - 1);
+  hf.updateRange();
+  return hf;
+}
+
+TEST(CameraPath, ParsesScaleFreeColumnsInAnyOrder) {
+  const CameraPath p = parseCameraPath(std::string("# ground walk\n") + kGroundHeader +
+                                           "0, 0.5,0.5, 0,0, 2, 0.9,0.9, 0, 2, 60\n"
+                                           "10, 0.5,0.5, 14,-1, 2.5, 0.9,0.9, 14, 2, 60\n",
+                                       "walk.csv");
+  EXPECT_EQ(p.eyeHeight, PathHeight::SpacingsAboveGround);
+  EXPECT_EQ(p.targetHeight, PathHeight::SpacingsAboveGround);
+  EXPECT_TRUE(p.spacingSteps);
+  EXPECT_FALSE(p.extentOnly());
+  ASSERT_EQ(p.keys.size(), 2u);
+  expectVec(p.keys[1].eye, {0.5, 2.5, 0.5});
+  expectVec(p.keys[1].eyeStepSp, {14, 0, -1});
+  expectVec(p.keys[1].targetStepSp, {14, 0, 0});  // no target_dz_sp column: 0
+  const CameraPath agl = parseCameraPath(
+      "fov,target_agl,target_z,target_x,eye_agl,eye_z,eye_x,time\n60,0,0.9,0.9,0.01,0.1,0.1,0\n"
+      "60,0,0.95,0.95,0.01,0.2,0.2,3\n",
+      "agl.csv");
+  EXPECT_EQ(agl.eyeHeight, PathHeight::AboveGround);
+  EXPECT_FALSE(agl.spacingSteps);
+  EXPECT_TRUE(parseCameraPath(kGood, "good.csv").extentOnly());
+}
+
+TEST(CameraPath, ScaleFreeColumnsNameFileLineAndColumn) {
+  const std::string h = kGroundHeader;
+  const std::string row0 = "0,0.5,0.5,0,0,2,0.9,0.9,0,2,60\n";
+  expectMentions(errorOf(h + row0 + "1,0.5,0.5,1,0,-1,0.9,0.9,0,2,60\n"), "3", "column 'eye_agl_sp': -1 is outside");
+  expectMentions(errorOf(h + row0 + "1,0.5,0.5,x,0,2,0.9,0.9,0,2,60\n"), "3",
+                 "column 'eye_dx_sp': 'x' is not a number");
+  expectMentions(errorOf(h + row0 + "1,0.5,0.5,2e6,0,2,0.9,0.9,0,2,60\n"), "3", "column 'eye_dx_sp'");
+  expectMentions(errorOf(h + row0 + "1,0.5,0.5,1,0,2,0.9,0.9,0,nan,60\n"), "3", "column 'target_agl_sp'");
+  expectMentions(errorOf(h + row0 + "1,0.5,0.5,1,0,2,0.9,0.9,0,2\n"), "3", "column 'fov': missing (10 of 11 values)");
+  expectMentions(errorOf("time,eye_x,eye_z,eye_agl,target_x,target_z,target_agl,fov\n0,0.5,0.5,11,0.9,0.9,0,60\n"), "2",
+                 "column 'eye_agl': 11 is outside [0, 10] (eye_agl is in units of the extent above the ground");
+  expectMentions(errorOf("time,eye_x,eye_z,target_x,target_y,target_z,fov\n" + row0), "1",
+                 "header: missing column 'eye_y' (or 'eye_agl' or 'eye_agl_sp'");
+  expectMentions(errorOf("time,eye_x,eye_z,eye_agl,eye_agl_sp,target_x,target_y,target_z,fov\n" + row0), "1",
+                 "columns 'eye_agl' and 'eye_agl_sp' both give the eye's height");
+  expectMentions(errorOf("time,eye_x,eye_z,eye_agl_sp,target_x,target_z,target_agl_sp,fov\n"
+                         "0,0.5,0.5,2,0.5,0.5,2,60\n1,0.5,0.5,2,0.9,0.9,2,60\n"),
+                 "2", "target equals the eye");
+  expectMentions(errorOf("time,eye_x,eye_z,eye_agl_sp,eye_dy_sp,target_x,target_z,target_agl_sp,fov\n" + row0), "1",
+                 "unexpected column 'eye_dy_sp'");
+}
+
+TEST(CameraPath, GroundRelativeHeightsFollowTheGroundInSpacings) {
+  // 65 samples over 640 units: spacing 10; the ground rises 0.5 per unit of x.
+  const Heightfield hf = rampTerrain(65, 640.0f, 0.5f);
+  ASSERT_DOUBLE_EQ(sampleSpacing(hf), 10.0);
+  const CameraPath p = parseCameraPath(std::string(kGroundHeader) +
+                                           "0, 0.25,0.5, 0,0, 2, 0.75,0.5, 0, 2, 60\n"
+                                           "10, 0.25,0.5, 14,0, 2, 0.75,0.5, 14, 2, 60\n",
+                                       "walk.csv");
+  for (int f : {0, 7, 30, 100}) {
+    const CameraPose pose = samplePose(p, 10, f, hf);
+    const double ground = hf.sample(pose.eye.x, pose.eye.z);
+    EXPECT_NEAR(pose.eye.y - ground, 2 * 10.0, 1e-4) << f;     // eye_agl_sp 2: 20 units above the ground
+    EXPECT_NEAR(pose.target.y - ground, 2 * 10.0, 1e-4) << f;  // same reference: a level gaze
+  }
+  // 14 spacings in 10 s: half way (the spline is symmetric there) and at the last key.
+  EXPECT_FLOAT_EQ(samplePose(p, 10, 50, hf).eye.x, 160.0f + 70.0f);
+  EXPECT_FLOAT_EQ(samplePose(p, 10, 100, hf).eye.x, 160.0f + 140.0f);
+  // Below the clamp: the eye stays kMinEyeAglSpacings (1) spacing above the ground, the target does not.
+  const CameraPath low = parseCameraPath(std::string(kGroundHeader) +
+                                             "0, 0.5,0.5, 0,0, 0.25, 0.75,0.5, 0, -3, 60\n"
+                                             "1, 0.5,0.5, 0,0, 0, 0.75,0.5, 0, -3, 60\n",
+                                         "low.csv");
+  for (int f : {0, 10}) {
+    const CameraPose pose = samplePose(low, 10, f, hf);
+    EXPECT_NEAR(pose.eye.y, 160.0f + kMinEyeAglSpacings * 10.0, 1e-4) << f;
+    EXPECT_NEAR(pose.target.y, 160.0f - 30.0f, 1e-4) << f;  // 3 spacings below the ground under the eye
+  }
+  // eye_agl in extents: 0.03 x 640 above the ground (0.01 would be under the 1-spacing clamp).
+  const CameraPath agl = parseCameraPath(
+      "time,eye_x,eye_z,eye_agl,target_x,target_z,target_y,fov\n0,0.5,0.5,0.03,0.9,0.5,0,60\n1,0.5,0.5,0.03,0.9,0.5,0,"
+      "60\n",
+      "agl.csv");
+  const CameraPose a = samplePose(agl, 10, 5, hf);
+  EXPECT_NEAR(a.eye.y, 160.0f + 19.2f, 1e-4);
+  EXPECT_FLOAT_EQ(a.target.y, hf.minHeight);
+  // A far origin moves the pose, not the ground lookup.
+  Heightfield far = hf;
+  far.originX = 1e6;
+  const CameraPose moved = samplePose(p, 10, 30, far), here = samplePose(p, 10, 30, hf);
+  EXPECT_FLOAT_EQ(moved.eye.y, here.eye.y);
+  EXPECT_FLOAT_EQ(moved.eye.x, float(double(here.eye.x) + 1e6));
+}
+
+// The point of the columns: one path, terrains of very different extents and sample counts, the
+// same motion and height counted in spacings.
+TEST(CameraPath, SpacingColumnsAreScaleFree) {
+  const CameraPath p = parseCameraPath(std::string(kGroundHeader) +
+                                           "0, 0.3,0.4, 0,0, 2, 0.8,0.9, 0, 2, 60\n"
+                                           "4, 0.3,0.4, 3,4, 3, 0.8,0.9, 3, 2, 60\n"
+                                           "8, 0.3,0.4, 9,6, 2, 0.8,0.9, 9, 2, 60\n",
+                                       "walk.csv");
+  const Heightfield small = rampTerrain(33, 64.0f, 0.3f), big = rampTerrain(257, 51200.0f, 0.05f);
+  const double sSmall = sampleSpacing(small), sBig = sampleSpacing(big);
+  for (int f = 0; f < frameCount(p, 10); ++f) {
+    const CameraPose a = samplePose(p, 10, f, small), b = samplePose(p, 10, f, big);
+    const double aglA = (a.eye.y - small.sample(a.eye.x, a.eye.z)) / sSmall;
+    const double aglB = (b.eye.y - big.sample(b.eye.x, b.eye.z)) / sBig;
+    ASSERT_NEAR(aglA, aglB, 1e-4) << f;
+    ASSERT_GE(aglA, 2.0 - 1e-4) << f;
+    ASSERT_NEAR((a.eye.x - 0.3 * 64.0) / sSmall, (b.eye.x - 0.3 * 51200.0) / sBig, 1e-4) << f;
+    ASSERT_NEAR((a.eye.z - 0.4 * 64.0) / sSmall, (b.eye.z - 0.4 * 51200.0) / sBig, 1e-4) << f;
+  }
+}
+
 class ShippedPath : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ShippedPath, ParsesAndStaysOverTerrain) {

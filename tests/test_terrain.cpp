@@ -157,7 +157,7 @@ TEST(Terrain, ProceduralRangeAndShape) {
 }
 
 TEST(Terrain, ProceduralRejectsBadSpec) {
-  for (int size : {1, 16386, -5}) EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(proceduralSpec(size, 1)); }), "");
+  for (int size : {1, 32769, -5}) EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(proceduralSpec(size, 1)); }), "");
   TerrainSpec s = proceduralSpec(64, 1);
   s.extent = 0.0f;
   EXPECT_NE(inputErrorOf([&] { lb::makeProcedural(s); }).find("extent"), std::string::npos);

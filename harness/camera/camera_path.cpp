@@ -28,18 +28,68 @@
 namespace lb {
 namespace {
 
-constexpr int kColumns = 8;
-const char* const kColumnNames[kColumns] = {"time",     "eye_x",    "eye_y",    "eye_z",
-                                            "target_x", "target_y", "target_z", "fov"};
+// Every column a header may name; the first 8 are the original format's.
+enum Column {
+  kTime,
+  kEyeX,
+  kEyeY,
+  kEyeZ,
+  kTargetX,
+  kTargetY,
+  kTargetZ,
+  kFov,
+  kEyeAgl,
+  kEyeAglSp,
+  kTargetAgl,
+  kTargetAglSp,
+  kEyeDxSp,
+  kEyeDzSp,
+  kTargetDxSp,
+  kTargetDzSp,
+  kColumns
+};
+const char* const kColumnNames[kColumns] = {
+    "time",    "eye_x",      "eye_y",      "eye_z",         "target_x",  "target_y",  "target_z",     "fov",
+    "eye_agl", "eye_agl_sp", "target_agl", "target_agl_sp", "eye_dx_sp", "eye_dz_sp", "target_dx_sp", "target_dz_sp"};
 const char* const kHeader = "time,eye_x,eye_y,eye_z,target_x,target_y,target_z,fov";
 constexpr double kMinFovDeg = 1, kMaxFovDeg = 170;
 // Relative coordinates beyond these are almost certainly world units or a typo, not a choice.
 constexpr double kMinXZ = -1, kMaxXZ = 2, kMinY = -1, kMaxY = 10;
+// Spacing counts: a million spacings is 30x the side of the largest terrain a device takes.
+constexpr double kMaxSpacings = 1e6;
 constexpr double kGroundClearance = 0.002;  // fraction of the extent; keeps the near plane above ground
 // Keyframes closer than this in time are refused: the spline's tangents divide by the step, so keys
 // 1e-300 s apart give velocities of 1e300 extents/s (inf and NaN poses). At 1 us the steepest
 // chord (3 extents) is 3e6 extents/s, finite, and no path sampled at up to 1e6 fps needs closer keys.
 constexpr double kMinKeyStepS = 1e-6;  // the message below says "1e-6 s"
+
+// Each column's accepted range and what its unit is, for the range message (fov and time apart).
+struct ColumnRange {
+  double lo, hi;
+  const char* unit;
+};
+ColumnRange rangeOf(int col) {
+  switch (col) {
+    case kEyeY:
+    case kTargetY:
+      return {kMinY, kMaxY, "y is in units of the extent above the lowest terrain point"};
+    case kEyeAgl:
+      return {0, kMaxY, "eye_agl is in units of the extent above the ground under the eye"};
+    case kTargetAgl:
+      return {-kMaxY, kMaxY, "target_agl is in units of the extent above the ground under the eye"};
+    case kEyeAglSp:
+      return {0, kMaxSpacings, "eye_agl_sp is in sample spacings above the ground under the eye"};
+    case kTargetAglSp:
+      return {-kMaxSpacings, kMaxSpacings, "target_agl_sp is in sample spacings above the ground under the eye"};
+    case kEyeDxSp:
+    case kEyeDzSp:
+    case kTargetDxSp:
+    case kTargetDzSp:
+      return {-kMaxSpacings, kMaxSpacings, "*_dx_sp and *_dz_sp are sample spacings added to x and z"};
+    default:
+      return {kMinXZ, kMaxXZ, "x and z are fractions of the terrain extent"};
+  }
+}
 
 // Blank lines are tolerated as well as '#' comments: a stray empty line is not worth an error.
 using Reader = io::CSVReader<kColumns, io::trim_chars<' ', '\t'>, io::no_quote_escape<','>, io::throw_on_overflow,
@@ -103,8 +153,8 @@ std::string describe(const io::error::base& e, const std::string& text, unsigned
     const std::vector<std::string> header = splitFields(lineOf(text, headerLine));
     if (got < header.size())
       return "column '" + printable(header[got]) + "': missing (" + std::to_string(got) + " of " +
-             std::to_string(kColumns) + " values)";
-    return std::to_string(got) + " values, but the header has " + std::to_string(kColumns) + " columns";
+             std::to_string(header.size()) + " values)";
+    return std::to_string(got) + " values, but the header has " + std::to_string(header.size()) + " columns";
   }
   if (dynamic_cast<const line_length_limit_exceeded*>(&e)) return "line too long";
   return printable(e.what(), 200);
@@ -125,27 +175,74 @@ double parseNumber(const char* raw, const std::string& file, unsigned line, int 
 }
 
 void checkRange(double v, int col, const std::string& file, unsigned line) {
-  const bool isY = col == 2 || col == 5;
-  const double lo = isY ? kMinY : kMinXZ, hi = isY ? kMaxY : kMaxXZ;
-  if (v < lo || v > hi)
-    failColumn(file, line, col,
-               num(v) + " is outside [" + num(lo) + ", " + num(hi) + "]" +
-                   (isY ? " (y is in units of the extent above the lowest terrain point)"
-                        : " (x and z are fractions of the terrain extent)"));
+  const ColumnRange r = rangeOf(col);
+  if (v < r.lo || v > r.hi)
+    failColumn(file, line, col, num(v) + " is outside [" + num(r.lo) + ", " + num(r.hi) + "] (" + r.unit + ")");
 }
 
-Keyframe parseRow(const char* const (&field)[kColumns], const std::string& file, unsigned line) {
-  double v[kColumns];
-  for (int c = 0; c < kColumns; ++c) v[c] = parseNumber(field[c], file, line, c);
-  for (int c = 1; c <= 6; ++c) checkRange(v[c], c, file, line);
-  if (!(v[7] > kMinFovDeg && v[7] < kMaxFovDeg))
-    failColumn(file, line, 7, num(v[7]) + " degrees is outside (" + num(kMinFovDeg) + ", " + num(kMaxFovDeg) + ")");
+// Which columns the header named, checked as a set: fccp reads them in any order and leaves the
+// absent ones null.
+struct Layout {
+  bool has[kColumns] = {};
+  PathHeight eyeHeight = PathHeight::AboveLowest, targetHeight = PathHeight::AboveLowest;
+  bool steps = false;
+};
+
+// One of y, agl, agl_sp for the eye (or the target): exactly one must be present.
+PathHeight heightColumn(const Layout& l, int y, int agl, int aglSp, const std::string& file, unsigned line) {
+  std::vector<int> given;
+  for (int c : {y, agl, aglSp})
+    if (l.has[c]) given.push_back(c);
+  if (given.empty())
+    fail(file, line,
+         std::string("header: missing column '") + kColumnNames[y] + "' (or '" + kColumnNames[agl] + "' or '" +
+             kColumnNames[aglSp] + "' for a height above the ground) (expected '" + kHeader + "')");
+  if (given.size() > 1)
+    fail(file, line,
+         std::string("header: columns '") + kColumnNames[given[0]] + "' and '" + kColumnNames[given[1]] +
+             "' both give the " + (y == kEyeY ? "eye" : "target") + "'s height; keep one");
+  return given[0] == y     ? PathHeight::AboveLowest
+         : given[0] == agl ? PathHeight::AboveGround
+                           : PathHeight::SpacingsAboveGround;
+}
+
+Layout checkLayout(const Reader& reader, const std::string& file, unsigned line) {
+  Layout l;
+  for (int c = 0; c < kColumns; ++c) l.has[c] = reader.has_column(kColumnNames[c]);
+  // In the original header's order, so a file of that format hears about its first missing column.
+  for (int c : std::initializer_list<int>{kTime, kEyeX, -1, kEyeZ, kTargetX, -2, kTargetZ, kFov}) {
+    if (c == -1) l.eyeHeight = heightColumn(l, kEyeY, kEyeAgl, kEyeAglSp, file, line);
+    if (c == -2) l.targetHeight = heightColumn(l, kTargetY, kTargetAgl, kTargetAglSp, file, line);
+    if (c >= 0 && !l.has[c])
+      fail(file, line, std::string("header: missing column '") + kColumnNames[c] + "' (expected '" + kHeader + "')");
+  }
+  l.steps = l.has[kEyeDxSp] || l.has[kEyeDzSp] || l.has[kTargetDxSp] || l.has[kTargetDzSp];
+  return l;
+}
+
+Keyframe parseRow(const char* const (&field)[kColumns], const Layout& l, const std::string& file, unsigned line) {
+  double v[kColumns] = {};
+  for (int c = 0; c < kColumns; ++c)
+    if (l.has[c]) v[c] = parseNumber(field[c], file, line, c);
+  for (int c = 1; c < kColumns; ++c)
+    if (l.has[c] && c != kFov) checkRange(v[c], c, file, line);
+  if (!(v[kFov] > kMinFovDeg && v[kFov] < kMaxFovDeg))
+    failColumn(file, line, kFov,
+               num(v[kFov]) + " degrees is outside (" + num(kMinFovDeg) + ", " + num(kMaxFovDeg) + ")");
+  auto height = [&](PathHeight h, int y, int agl, int aglSp) {
+    return h == PathHeight::AboveLowest ? v[y] : h == PathHeight::AboveGround ? v[agl] : v[aglSp];
+  };
   Keyframe k;
-  k.time = v[0];
-  k.eye = {v[1], v[2], v[3]};
-  k.target = {v[4], v[5], v[6]};
-  k.fovDeg = v[7];
-  if (glm::length(k.target - k.eye) < 1e-9) fail(file, line, "columns 'target_x/y/z': target equals the eye position");
+  k.time = v[kTime];
+  k.eye = {v[kEyeX], height(l.eyeHeight, kEyeY, kEyeAgl, kEyeAglSp), v[kEyeZ]};
+  k.target = {v[kTargetX], height(l.targetHeight, kTargetY, kTargetAgl, kTargetAglSp), v[kTargetZ]};
+  k.eyeStepSp = {v[kEyeDxSp], 0.0, v[kEyeDzSp]};
+  k.targetStepSp = {v[kTargetDxSp], 0.0, v[kTargetDzSp]};
+  k.fovDeg = v[kFov];
+  // Only where both are in one unit can a keyframe alone show the target on the eye.
+  if (l.eyeHeight == l.targetHeight && glm::length(k.target - k.eye) < 1e-9 &&
+      glm::length(k.targetStepSp - k.eyeStepSp) < 1e-9)
+    fail(file, line, "columns 'target_x/y/z': target equals the eye position");
   return k;
 }
 
@@ -180,14 +277,22 @@ CameraPath parseCameraPath(const std::string& text, const std::string& nameForEr
   Reader reader(nameForErrors, text.data(), text.data() + text.size());
   unsigned headerLine = 0;
   try {
-    reader.read_header(io::ignore_no_column, kColumnNames[0], kColumnNames[1], kColumnNames[2], kColumnNames[3],
-                       kColumnNames[4], kColumnNames[5], kColumnNames[6], kColumnNames[7]);
+    // Missing columns are checked as a set by checkLayout (one of the alternatives for a height).
+    reader.read_header(io::ignore_missing_column, kColumnNames[0], kColumnNames[1], kColumnNames[2], kColumnNames[3],
+                       kColumnNames[4], kColumnNames[5], kColumnNames[6], kColumnNames[7], kColumnNames[8],
+                       kColumnNames[9], kColumnNames[10], kColumnNames[11], kColumnNames[12], kColumnNames[13],
+                       kColumnNames[14], kColumnNames[15]);
     headerLine = reader.get_file_line();
-    const char* f[kColumns];
+    const Layout layout = checkLayout(reader, nameForErrors, headerLine);
+    path.eyeHeight = layout.eyeHeight;
+    path.targetHeight = layout.targetHeight;
+    path.spacingSteps = layout.steps;
+    const char* f[kColumns] = {};
     unsigned prevLine = 0;
-    while (reader.read_row(f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7])) {
+    while (reader.read_row(f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[11], f[12], f[13],
+                           f[14], f[15])) {
       const unsigned line = reader.get_file_line();
-      Keyframe k = parseRow(f, nameForErrors, line);
+      Keyframe k = parseRow(f, layout, nameForErrors, line);
       if (!path.keys.empty() && !(k.time > path.keys.back().time))
         failColumn(nameForErrors, line, 0,
                    num(k.time) + " is not after the previous keyframe's " + num(path.keys.back().time) + " (line " +
@@ -233,6 +338,10 @@ Keyframe interpolate(const CameraPath& path, double t) {
   k.time = t;
   k.eye = hermite(keys, i, s, &Keyframe::eye);
   k.target = hermite(keys, i, s, &Keyframe::target);
+  if (path.spacingSteps) {
+    k.eyeStepSp = hermite(keys, i, s, &Keyframe::eyeStepSp);
+    k.targetStepSp = hermite(keys, i, s, &Keyframe::targetStepSp);
+  }
   k.fovDeg = keys[i].fovDeg + (keys[i + 1].fovDeg - keys[i].fovDeg) * s;
   return k;
 }
@@ -254,10 +363,16 @@ CameraPose terrainLocalPose(const CameraPose& pose, const Heightfield& terrain) 
   return local;
 }
 
-CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain) {
-  checkFps(fps);
-  if (path.keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
-  const Keyframe k = interpolate(path, path.keys.front().time + frame / fps);
+double sampleSpacing(const Heightfield& terrain) {
+  const int samples = std::max(terrain.width, terrain.height);
+  return samples > 1 ? double(terrain.extent) / double(samples - 1) : double(terrain.extent);
+}
+
+namespace {
+
+// The original format: every coordinate relative to the extent and the lowest point, the eye kept
+// 0.002 extent above the ground. Kept as it was, so shipped paths sample bit-identical poses.
+CameraPose extentPose(const Keyframe& k, const Heightfield& terrain) {
   const double extent = terrain.extent;
   auto toWorld = [&](const glm::dvec3& r) {
     return glm::vec3(glm::dvec3(r.x * extent, r.y * extent + terrain.minHeight, r.z * extent));
@@ -268,6 +383,44 @@ CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heigh
   pose.fovDeg = static_cast<float>(k.fovDeg);
   const float ground = terrain.sample(pose.eye.x, pose.eye.z) + static_cast<float>(kGroundClearance * extent);
   pose.eye.y = std::max(pose.eye.y, ground);
+  return pose;
+}
+
+// Scale-free columns: x and z from the extent plus spacings, heights from the lowest point or the
+// ground under the eye (looked up here, per sampled frame, after the relative values were
+// interpolated). Computed in double, rounded to float once per coordinate.
+CameraPose groundPose(const CameraPath& path, const Keyframe& k, const Heightfield& terrain) {
+  const double extent = terrain.extent, spacing = sampleSpacing(terrain);
+  auto horizontal = [&](double fraction, double steps) { return float(fraction * extent + steps * spacing); };
+  CameraPose pose;
+  pose.fovDeg = static_cast<float>(k.fovDeg);
+  pose.eye.x = horizontal(k.eye.x, k.eyeStepSp.x);
+  pose.eye.z = horizontal(k.eye.z, k.eyeStepSp.z);
+  pose.target.x = horizontal(k.target.x, k.targetStepSp.x);
+  pose.target.z = horizontal(k.target.z, k.targetStepSp.z);
+  const double ground = terrain.sample(pose.eye.x, pose.eye.z);  // under the eye: both heights' reference
+  auto height = [&](PathHeight h, double v) {
+    return h == PathHeight::AboveLowest   ? v * extent + terrain.minHeight
+           : h == PathHeight::AboveGround ? ground + v * extent
+                                          : ground + v * spacing;
+  };
+  double eyeY = height(path.eyeHeight, k.eye.y);
+  if (path.eyeHeight == PathHeight::AboveLowest)
+    eyeY = std::max(eyeY, ground + kGroundClearance * extent);
+  else
+    eyeY = std::max(eyeY, ground + kMinEyeAglSpacings * spacing);
+  pose.eye.y = float(eyeY);
+  pose.target.y = float(height(path.targetHeight, k.target.y));
+  return pose;
+}
+
+}  // namespace
+
+CameraPose samplePose(const CameraPath& path, double fps, int frame, const Heightfield& terrain) {
+  checkFps(fps);
+  if (path.keys.empty()) throw InputError(path.file + ": camera path has no keyframes");
+  const Keyframe k = interpolate(path, path.keys.front().time + frame / fps);
+  CameraPose pose = path.extentOnly() ? extentPose(k, terrain) : groundPose(path, k, terrain);
   if (terrain.originX != 0.0 || terrain.originZ != 0.0) {
     // Placed in double, then rounded to float like the patch vertices (renderer_setup.cpp).
     const glm::dvec3 o(terrain.originX, 0.0, terrain.originZ);

@@ -34,11 +34,12 @@ static bool isProceduralTerrain(const TerrainSpec& s) {
 // The terrain's type, and no field that type does not read.
 static void parseTerrainType(const ConfigReader& r, const json& t, const std::string& ptr, TerrainSpec& spec) {
   if (t.contains("type")) spec.type = r.string(t["type"], ptr + "/type");
-  static const std::set<std::string> kTypes = {"procedural", "hgt",    "png16", "r16",  "r32f",
-                                               "gdal",       "spikes", "cliff", "flat", "voids"};
+  static const std::set<std::string> kTypes = {"procedural", "hgt",   "png16", "r16",   "r32f",  "gdal",
+                                               "spikes",     "cliff", "flat",  "voids", "canyon"};
   if (!kTypes.count(spec.type))
-    r.fail(ptr + "/type", "'" + printable(spec.type) +
-                              "' is not one of procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids");
+    r.fail(ptr + "/type",
+           "'" + printable(spec.type) +
+               "' is not one of procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids, canyon");
   const bool gdal = spec.type == "gdal";
   if (gdal && !haveGdal())
     r.fail(ptr + "/type",
@@ -73,9 +74,11 @@ static void parseTerrainFields(const ConfigReader& r, const json& t, const std::
   }
   if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
   if (gdal) spec.extent = 0.0f;                       // from the file's georeferencing unless "extent" is given
-  if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 16385);
-  if (t.contains("detail")) {  // procedural only: "fixed" (8 octaves, the default) or "resolution"
-    if (spec.type != "procedural") r.fail(ptr + "/detail", "only procedural terrains take a 'detail'");
+  // 32768: the largest maxImageDimension2D of current GPUs (an H100 takes 32759^2 in its memory).
+  if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 32768);
+  if (t.contains("detail")) {  // procedural and canyon: "fixed" (8 octaves, the default) or "resolution"
+    if (spec.type != "procedural" && spec.type != "canyon")
+      r.fail(ptr + "/detail", "only procedural and canyon terrains take a 'detail'");
     const std::string d = r.string(t["detail"], ptr + "/detail");
     if (d != "fixed" && d != "resolution")
       r.fail(ptr + "/detail", "'" + printable(d) + "' is not one of fixed, resolution");
@@ -327,7 +330,8 @@ std::string terrainLabel(const TerrainSpec& t) {
   if (t.type == "procedural")
     return "proc" + std::to_string(t.size) + "s" + std::to_string(t.seed) + (t.detailToSpacing ? "-detail" : "");
   if (t.type == "voids") return "voids1201s" + std::to_string(t.seed);  // the tile's size, not t.size
-  if (isGeneratedTerrain(t.type)) return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed);
+  if (isGeneratedTerrain(t.type))
+    return t.type + std::to_string(t.size) + "s" + std::to_string(t.seed) + (t.detailToSpacing ? "-detail" : "");
   auto slash = t.file.find_last_of('/');
   std::string stem = t.file.substr(slash == std::string::npos ? 0 : slash + 1);
   stem = stem.substr(0, stem.find('.'));

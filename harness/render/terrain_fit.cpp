@@ -11,7 +11,8 @@ std::string wayOut(const TerrainSpec& spec, int largest) {
   if (spec.type == "gdal")
     return "read a coarser level with 'overview' (each level halves both sides) or crop it with 'window' (at most " +
            side + " x " + side + " samples)";
-  if (spec.type == "procedural" || spec.type == "spikes" || spec.type == "cliff" || spec.type == "flat")
+  if (spec.type == "procedural" || spec.type == "spikes" || spec.type == "cliff" || spec.type == "flat" ||
+      spec.type == "canyon")
     return "choose a 'size' of at most " + side;
   return "load the file as type 'gdal' with 'overview' or 'window', or resample it to at most " + side + " x " + side +
          " samples";

@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
 
 #include "error.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 namespace {
@@ -35,7 +37,7 @@ Heightfield base(const TerrainSpec& spec, float peak) {
 }  // namespace
 
 bool isGeneratedTerrain(const std::string& type) {
-  return type == "spikes" || type == "cliff" || type == "flat" || type == "voids";
+  return type == "spikes" || type == "cliff" || type == "flat" || type == "voids" || type == "canyon";
 }
 
 Heightfield makeGeneratedTerrain(const TerrainSpec& spec) {
@@ -43,7 +45,8 @@ Heightfield makeGeneratedTerrain(const TerrainSpec& spec) {
   if (spec.type == "cliff") return makeCliff(spec);
   if (spec.type == "flat") return makeFlat(spec);
   if (spec.type == "voids") return makeVoids(spec);
-  throw InputError("terrain: '" + spec.type + "' is not a generated terrain type (spikes, cliff, flat, voids)");
+  if (spec.type == "canyon") return makeCanyon(spec);
+  throw InputError("terrain: '" + spec.type + "' is not a generated terrain type (spikes, cliff, flat, voids, canyon)");
 }
 
 Heightfield makeSpikes(const TerrainSpec& spec) {
@@ -92,6 +95,25 @@ Heightfield makeCliff(const TerrainSpec& spec) {
 Heightfield makeFlat(const TerrainSpec& spec) {
   Heightfield hf = base(spec, 0.0f);  // validates size and extent; heightScale 0 gives exact zeros
   std::fill(hf.h.begin(), hf.h.end(), 0.0f);
+  hf.updateRange();
+  return hf;
+}
+
+Heightfield makeCanyon(const TerrainSpec& spec) {
+  Heightfield hf = base(spec, 1.0f);  // [0, 1], the crests at 1
+  const size_t n = size_t(hf.width);
+  parallelRows(
+      hf.height,
+      [&](int z0, int z1) {
+        for (size_t i = size_t(z0) * n; i < size_t(z1) * n; ++i) {
+          const float t = (1.0f - hf.h[i]) * float(kCanyonSteps);  // crests -> canyon floors
+          const float step = std::min(std::floor(t), float(kCanyonSteps - 1));
+          const float f = std::clamp((t - step - (1.0f - kCanyonWall)) / kCanyonWall, 0.0f, 1.0f);
+          const float wall = f * f * (3.0f - 2.0f * f);  // smoothstep: flat bench, wall, flat bench
+          hf.h[i] = std::min((step + wall) / float(kCanyonSteps) * spec.heightScale, spec.heightScale);
+        }
+      },
+      256);
   hf.updateRange();
   return hf;
 }

@@ -12,7 +12,7 @@
 namespace lb {
 
 // Terrain types these generators add to TerrainSpec::type.
-bool isGeneratedTerrain(const std::string& type);  // spikes | cliff | flat | voids
+bool isGeneratedTerrain(const std::string& type);  // spikes | cliff | flat | voids | canyon
 // Dispatches on spec.type; throws InputError for a size outside makeProcedural's range.
 Heightfield makeGeneratedTerrain(const TerrainSpec& spec);
 
@@ -27,6 +27,14 @@ Heightfield makeCliff(const TerrainSpec& spec);
 int cliffColumn(const TerrainSpec& spec);  // the last sample column before the step
 // Every sample 0: a perfectly flat plane (heightScale ignored).
 Heightfield makeFlat(const TerrainSpec& spec);
+// Canyon country, a terrain of another character than the procedural mountains for the workload
+// suite (configs/suite/): the procedural terrain (its "detail" included) upside down, so its sharp
+// crests become narrow canyons cut into broad uplands, then terraced into kCanyonSteps flat benches
+// joined by walls that rise over the top kCanyonWall of each step (5x steeper than the slope they
+// replace at their middle). Heights in [0, heightScale]; same spec -> same bits.
+constexpr int kCanyonSteps = 5;
+constexpr float kCanyonWall = 0.3f;
+Heightfield makeCanyon(const TerrainSpec& spec);
 
 // An SRTM tile (1201^2, writeHgtWithVoid) with a seeded void patch, read back through the .hgt
 // loader so its voids are filled as loadHeightfield documents; `size` is ignored (the tile's is

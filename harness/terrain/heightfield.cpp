@@ -77,9 +77,9 @@ void Heightfield::updateRange() {
 namespace {
 
 constexpr int kMinSize = 2;
-constexpr int kMaxSize = 16385;
+constexpr int kMaxSize = 32768;         // the largest maxImageDimension2D of current GPUs (config.cpp's bound)
 constexpr int kOctaves = 8;             // the default ("detail": "fixed"): the finest cell is 1/192 of the extent
-constexpr int kMaxOctaves = 16;         // "detail": "resolution" at the largest size needs 13
+constexpr int kMaxOctaves = 16;         // "detail": "resolution" needs 13 at 16385^2, 14 at 32768^2
 constexpr int kRidgedOctaves = 5;       // octaves 1..5; octave 0 is uplift, the rest fBm detail
 constexpr float kBaseFrequency = 1.5f;  // noise cells across the whole terrain at octave 0
 constexpr float kRidgeOffset = 1.0f;    // Musgrave's offset: 1 puts the crest at noise == 0
@@ -249,7 +249,7 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
   if (spec.type == "hgt" || spec.type == "png16" || spec.type == "r16" || spec.type == "r32f" || spec.type == "gdal")
     return placed(loadHeightfield(spec));
   throw InputError("terrain: unknown type '" + spec.type +
-                   "' (valid types: procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids)");
+                   "' (valid types: procedural, hgt, png16, r16, r32f, gdal, spikes, cliff, flat, voids, canyon)");
 }
 
 uint64_t Heightfield::heightHash() const {

@@ -60,7 +60,7 @@ struct TerrainSpec {
   float extent = 1000.0f;               // world units covered along x and z; gdal: 0 = from the file's georeferencing
   float heightScale = 120.0f;           // procedural: peak height; files: multiplier on stored values
   double originX = 0.0, originZ = 0.0;  // world position of the terrain's (0, 0) corner (Heightfield::originX)
-  // procedural "detail": "resolution": fBm octaves continue down to 2 sample spacings, so more
+  // procedural (and canyon) "detail": "resolution": fBm octaves continue down to 2 sample spacings, so more
   // samples carry more relief; false ("fixed", the default) keeps the 8 octaves of every earlier run.
   bool detailToSpacing = false;
   int band = 0;             // gdal: raster band, 1-based; 0 = the file's only band
