@@ -39,14 +39,18 @@ TuneSpace defaultTuneSpace(const Scheme& scheme) {
   // side): 16 is coarse for a 4097^2 terrain, 256 reaches 16385^2 at level 64.
   if (info.path == DrawPath::Tessellation && !info.mainParam.empty()) space["grid"] = {16, 64, 256};
   // What a user of each method sets besides its main knob (the sources' constants, as ranges).
+  // Finer cells than samples are what a close view of a coarse DEM needs to follow its bilinear
+  // surface (an H100 run found cdlod-sse and cbt unable to reach 1 px on a 90 m crop's grazing
+  // view at one cell a sample); node size and leaf subdivision trade draws against culling.
   static const std::map<std::string, TuneSpace> kExtra = {
-      {"interlock", {{"min_lod", {1, 4}}}},           // the book's minMaxLOD.x
-      {"cdlod", {{"node_cells", {16, 32, 64}}}},      // Strugar's leaf node size
-      {"cdlod-sse", {{"node_cells", {16, 32, 64}}}},  // the same nodes, refined by error
-      {"clipmap", {{"cells_per_texel", {1, 2}}}},     // the finest level's spacing
-      {"cbt", {{"subd", {2, 3, 4}}}},                 // LEB2D's leaf subdivision
-      {"cbt-ts", {{"subd", {2, 3, 4}}}},
+      {"interlock", {{"min_lod", {1, 4}}}},                                // the book's minMaxLOD.x
+      {"cdlod", {{"node_cells", {16, 64}}, {"cells_per_texel", {1, 2}}}},  // Strugar's node size, grid
+      {"cdlod-sse", {{"node_cells", {16, 64}}, {"cells_per_texel", {1, 2}}}},
+      {"clipmap", {{"cells_per_texel", {1, 2}}}},                // the finest level's spacing
+      {"cbt", {{"subd", {2, 3}}, {"cells_per_texel", {1, 2}}}},  // LEB2D's leaf subdivision, depth
+      {"cbt-ts", {{"subd", {2, 3}}, {"cells_per_texel", {1, 2}}}},
   };
+
   auto extra = kExtra.find(info.name);
   if (extra != kExtra.end())
     for (const auto& [k, v] : extra->second)

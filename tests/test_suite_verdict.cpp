@@ -127,6 +127,22 @@ TEST(SuiteVerdict, GeometricMeanOverWorkloadsWinsAndMissingSchemes) {
   EXPECT_EQ(verdictJson(v).dump(), verdictJson(again).dump());
 }
 
+TEST(SuiteVerdict, AnOverAccurateSchemeIsComparedWithANote) {
+  // Missing: its finest setting errs more than the target; compared with a note: its coarsest
+  // setting is already more accurate than the target, so it meets it at an upper bound of its cost.
+  SplitMix64 rng{5};
+  Workload w{"w",
+             {timings("A", 1.0, 3, 30, 0.01, 0.02, rng), SchemeTimings{"B", {}, "target unreachable: ..."},
+              timings("C", 2.0, 3, 30, 0.01, 0.02, rng)}};
+  w.schemes[2].note = "more accurate than the target at its coarsest";
+  SuiteVerdict v = suiteVerdict({w});
+  const WorkloadResult& r = v.workloads[0];
+  EXPECT_EQ(r.missing.count("B"), 1u);
+  EXPECT_EQ(r.notes.at("C"), "more accurate than the target at its coarsest");
+  EXPECT_NEAR(r.ratio.at("C").value, 2.0, 0.05);
+  EXPECT_EQ(verdictJson(v)["workloads"][0]["notes"]["C"], "more accurate than the target at its coarsest");
+}
+
 TEST(SuiteVerdict, RefusesRaggedTimings) {
   SchemeTimings a{"A", {{1, 1, 1}, {1, 1}}, ""};
   EXPECT_THROW(suiteVerdict({{"w", {a}}}), std::invalid_argument);

@@ -98,6 +98,7 @@ SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confide
         continue;
       }
       logs[s.scheme] = logStats(logRepMeans(s));
+      if (!s.note.empty()) res.notes[s.scheme] = s.note;
       if (s.reps.size() < 2) res.noInterval.push_back(s.scheme);
       res.costMs[s.scheme] = std::exp(logs[s.scheme].mean);
     }
@@ -174,7 +175,8 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
                {"no_interval", w.noInterval},
                {"cost_ms", w.costMs},
                {"ratio", r},
-               {"missing", w.missing}};
+               {"missing", w.missing},
+               {"notes", w.notes}};
     ws.push_back(jw);
   }
   json ss = json::array();
@@ -238,10 +240,16 @@ std::vector<Workload> runWorkloads(const RunData& run) {
       s.scheme = perScheme[c->scheme] > 1 ? c->scheme + "(" + paramsLabel(c->listedParams) + ")" : c->scheme;
       if (c->status != "ok") {
         s.missing = c->status + (c->reason.empty() ? "" : ": " + c->reason);
-      } else if (c->matched.is_object() && c->matched.value("reachable", true) == false) {
+      } else if (c->matched.is_object() && c->matched.value("reachable", true) == false &&
+                 !(c->matched["achieved"].is_number() && c->matched["target"].is_number() &&
+                   c->matched["achieved"].get<double>() <= c->matched["target"].get<double>())) {
         s.missing = "target unreachable: closest " + c->matched.value("param", std::string("value")) + " " +
                     c->matched["value"].dump() + " reached " + c->matched["achieved"].dump();
       } else {
+        if (c->matched.is_object() && c->matched.value("reachable", true) == false)
+          s.note = "more accurate than the target at its coarsest: " + c->matched.value("param", std::string("value")) +
+                   " " + c->matched["value"].dump() + " reached " + c->matched["achieved"].dump() +
+                   " (its cost is an upper bound)";
         s.reps = repetitions(c->frames);
         if (s.reps.empty()) s.missing = "no gpu_ms in the case's frames";
       }

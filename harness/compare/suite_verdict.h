@@ -28,6 +28,7 @@ struct SchemeTimings {
   std::string scheme;
   std::vector<std::vector<double>> reps;
   std::string missing;
+  std::string note;  // compared with a caveat (e.g. more accurate than the target at its coarsest)
 };
 
 struct Workload {
@@ -46,8 +47,9 @@ struct WorkloadResult {
   std::map<std::string, double> costMs;   // point estimates
   std::map<std::string, Interval> ratio;  // to the cheapest (its own: exactly 1)
   std::map<std::string, std::string> missing;
-  std::vector<std::string> tied;        // the cheapest and every scheme whose interval reaches 1 (or has none)
-  std::vector<std::string> noInterval;  // schemes (or the cheapest) with fewer than 2 repetitions
+  std::map<std::string, std::string> notes;  // SchemeTimings::note of the schemes compared
+  std::vector<std::string> tied;             // the cheapest and every scheme whose interval reaches 1 (or has none)
+  std::vector<std::string> noInterval;       // schemes (or the cheapest) with fewer than 2 repetitions
   bool verdict() const { return tied.size() == 1; }
 };
 
@@ -78,7 +80,9 @@ struct RunData;
 // scheme is named by its scheme name, or its case label (scheme and listed parameters) where the
 // workload holds several cases of it. Timings: each case's `gpu_ms` split into repetitions (the
 // frame index starts again). Missing: a case not ok (its status and reason), or a matched case
-// whose target was unreachable (the closest value tried and what it reached).
+// whose target was unreachable because even its finest setting errs more (the closest value tried
+// and what it reached). A case more accurate than the target even at its coarsest setting meets
+// the target: it is compared at that setting, with a note (its cost is then an upper bound).
 std::vector<Workload> runWorkloads(const RunData& run);
 
 // Writes RUN-DIR/verdict.json and returns the verdict (InputError for a directory that is not a run).

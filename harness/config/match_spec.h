@@ -13,7 +13,7 @@ struct MatchSpec {
   // Tuned search (replay/matched.h tuneAndMatch): every scheme searched over its registry's tuning
   // space (schemes/registry.h defaultTuneSpace) unless its entry lists its own "tune".
   bool tune = false;
-  // Evaluations a scheme's whole search may use (0: 3 x (iterations + 2)), the same for every
+  // Evaluations a scheme's whole search may use (0: 4 x (iterations + 2)), the same for every
   // scheme: each of a space's K configurations gets min(iterations, max(2, budget / K - 2)) steps.
   int budget = 0;
   bool on() const { return !metric.empty(); }

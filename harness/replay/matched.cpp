@@ -218,7 +218,7 @@ TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& b
     configs = next;
   }
   const int K = int(configs.size());
-  out.budget = config.match.budget > 0 ? config.match.budget : 3 * (config.match.iterations + 2);
+  out.budget = config.match.budget > 0 ? config.match.budget : 4 * (config.match.iterations + 2);
   Config each = config;
   each.match.iterations = std::min(config.match.iterations, std::max(2, out.budget / K - 2));
   const double target = config.match.value;
