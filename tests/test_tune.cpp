@@ -87,7 +87,9 @@ TEST(Tune, TheOldFixedGridCannotReachTheTargetTheTunedSearchDoes) {
       EXPECT_TRUE(conf["cost_ms"].is_number()) << conf.dump();
       EXPECT_FALSE(conf["match"]["trials"].empty());
       evaluations += int(conf["match"]["trials"].size());
-      if (conf["settings"]["grid"] == 2) EXPECT_FALSE(conf["match"]["reachable"].get<bool>());
+      if (conf["settings"]["grid"] == 2) {
+        EXPECT_FALSE(conf["match"]["reachable"].get<bool>());
+      }
     }
     EXPECT_EQ(tuned["evaluations"], evaluations);
     EXPECT_LE(evaluations, tuned["budget"].get<int>()) << "the search keeps to its budget";
