@@ -698,9 +698,7 @@ class Cdlod : public Scheme {
           .name = "cdlod",
           .description =
               "CPU quadtree by doubling distance ranges, instanced grid quadrants morphing into the next level",
-          .seed =
-              "Strugar 2010, Continuous Distance-Dependent Level of Detail (LODSelect, morph vertex shader); "
-              "drawpaths.md 3.1",
+          .seed = "Strugar 2010, Continuous Distance-Dependent Level of Detail (LODSelect, morph vertex shader)",
           .params = params,
           .mainParam = "tri_size",
           .mainParamRole = MainParamRole::TriangleWidthPx,
@@ -721,7 +719,7 @@ class Cdlod : public Scheme {
           .description = "CDLOD nodes refined by projected precomputed error (chunked LOD), 2:1 balanced, morphing",
           .seed =
               "Ulrich 2002, Rendering Massive Terrains using Chunked Level of Detail Control (rho = K delta / D) "
-              "on Strugar 2010's nodes; drawpaths.md 3.2",
+              "on Strugar 2010's nodes",
           .params = params,
           .mainParam = "max_error_px",
           .mainParamRole = MainParamRole::Knob,

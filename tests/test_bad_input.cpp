@@ -188,7 +188,7 @@ std::vector<Row> rows() {
        kRun,
        {"c.json:6", "'/terrain/seed'", "empty list"}},
       {"terrains_not_array", {{"c.json", cfg("\"terrains\": {\"seed\": 1}")}}, kRun, {"c.json:6", "'/terrains'"}},
-      // Issue 31 item 6: an empty list beside the single form is refused like an empty "paths".
+      // An empty list beside the single form is refused like an empty "paths".
       {"terrains_empty_beside_terrain",
        {{"c.json", cfg("\"terrain\": {\"size\": 17},\n  \"terrains\": []")}},
        kRun,

@@ -1,4 +1,4 @@
-// What the command line says about a sweep before and around it (issue 24): --dry-run's count,
+// What the command line says about a sweep before and around it: --dry-run's count,
 // time and disk estimates; "did you mean" for mistyped schemes, parameters and fields; devices
 // naming CPU rasterizers; compare saying "no timing verdict" once, not once per case.
 #include <gtest/gtest.h>

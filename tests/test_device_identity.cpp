@@ -1,4 +1,4 @@
-// Which board ran a run (issue 31 item 7): the device's UUID from Vulkan and, on NVIDIA, the power
+// Which board ran a run: the device's UUID from Vulkan and, on NVIDIA, the power
 // limit from NVML, in every run's context; compare notes another board of the model without
 // calling it a regression.
 #include <gtest/gtest.h>

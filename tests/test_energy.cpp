@@ -1,4 +1,4 @@
-// Energy per frame (issue 32 item 5): the board's energy counter (NVML on NVIDIA, loaded at run
+// Energy per frame: the board's energy counter (NVML on NVIDIA, loaded at run
 // time) over windows of whole ticks, the path looped until the window is long enough, 3 rounds
 // with their spread; null with its reason where there is no counter. A stand-in counter that ticks
 // at a known period and power gives the right joules per frame.

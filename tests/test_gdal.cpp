@@ -534,7 +534,7 @@ TEST(GdalConfig, FieldsLabelsAndIdentity) {
   r.terrainHeight = atOverview.height;
   const nlohmann::json t = lb::caseJson(cases[3], r)["terrain"];
   // The grid the overview gave (9 x 5 averaged 2:1, rounded up), not the raster's; a gdal terrain
-  // has no size or seed (issue 31 item 6).
+  // has no size or seed.
   EXPECT_EQ(t["samples"], nlohmann::json({5, 3}));
   EXPECT_FALSE(t.contains("size")) << t.dump();
   EXPECT_FALSE(t.contains("seed")) << t.dump();
@@ -672,7 +672,7 @@ TEST(GdalCli, RunRecordsTheSourceInTheCaseFile) {
     terrains[t["label"].get<std::string>()] = t;
   }
   ASSERT_EQ(terrains.size(), 2u);
-  // Read at overview 1: the 5 x 3 samples it loaded, beside the 9 x 5 raster (issue 31 item 6).
+  // Read at overview 1: the 5 x 3 samples it loaded, beside the 9 x 5 raster.
   const nlohmann::json& o1 = terrains["dem-o1"];
   EXPECT_EQ(o1["samples"], nlohmann::json({5, 3})) << o1.dump();
   EXPECT_EQ(o1["source"]["raster_size"], nlohmann::json({9, 5}));

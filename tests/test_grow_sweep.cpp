@@ -1,4 +1,4 @@
-// Sweeps that grow (issue 24): re-running a config with the same --out after adding a scheme runs
+// Sweeps that grow: re-running a config with the same --out after adding a scheme runs
 // only the new cases; a finished case whose inputs changed is refused until --rerun-changed; a
 // case no longer in the config is stale: kept on disk, listed in run.json and left out of its cases,
 // summary.json, frames.csv and the report; a folder of another tool version is refused. Cases
@@ -223,7 +223,7 @@ TEST(GrowSweep, CaseRecordsEveryParameterWithItsResolvedValue) {
   EXPECT_EQ(row.substr(row.rfind(",sphere,")), ",sphere,0,," + numberText(expected["tri_size"].get<double>()));
 }
 
-// Issue 31 item 3: a parameter listed at its default is the same case as one left out, and a run
+// A parameter listed at its default is the same case as one left out, and a run
 // of either into the folder of the other keeps the case (same digest, the id it was recorded
 // with), never marking it stale and running it again. Every parameter of every scheme, in both
 // directions, through the resume plan (no device).

@@ -2,7 +2,7 @@
 // back and reduced on the CPU, through measureFrame on the same renderer and poses, on every shipped
 // path over the procedural terrain and the committed DEM crop. Counts, histograms, cracks, coverage,
 // popping and the image metrics that rest on integer sums are equal; the error statistics, PSNR and
-// SSIM are held to the tolerances of issue 25; the surplus search meets its own 2% criterion on both.
+// SSIM are held to the tolerances this test states; the surplus search meets its own 2% criterion on both.
 #include <gtest/gtest.h>
 
 #include <cmath>

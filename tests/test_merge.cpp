@@ -1,4 +1,4 @@
-// Merging shards that a cluster scheduler retried (issue 31 item 7): a folder named twice, a shard
+// Merging shards that a cluster scheduler retried: a folder named twice, a shard
 // re-run into a second folder, a failed attempt beside its retry, and two finished copies of a
 // case that differ. The output must depend only on the set of folders (every file compared byte
 // for byte), and differing finished copies must be refused, naming the case and both folders.

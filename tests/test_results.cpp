@@ -130,7 +130,7 @@ TEST(Results, FailingCaseIsRecordedAndSweepGoesOn) {
   }
 }
 
-// Issue 31 item 6: a file terrain's record carries no size or seed (it uses neither), and names
+// A file terrain's record carries no size or seed (it uses neither), and names
 // the grid of samples it ran on; its identity (inputs, digest) never held them.
 TEST(Results, FileTerrainRecordsItsSamplesNotSizeOrSeed) {
   fs::path dir = freshDir("lodbench_file_terrain");

@@ -134,7 +134,7 @@ TEST(CaseIdentity, DuplicateEntriesAreErrorsNamingBoth) {
                          "schemes": [{"name": "uniform", "params": {"level": 3}}, "sphere",
                                      {"name": "uniform", "params": {"level": [2, 3]}}])"));
   });
-  // At the second entry's line and field, naming the first's line (issue 31 item 6).
+  // At the second entry's line and field, naming the first's line.
   EXPECT_NE(e.find("resume.json:4: field '/schemes/2': /schemes/0 (line 3) and /schemes/2 both run uniform level=3"),
             std::string::npos)
       << e;

@@ -1,4 +1,4 @@
-// The workload suite (configs/suite/, issue 32 items 1 and 7). Its miniature (mini.json) runs on
+// The workload suite (configs/suite/). Its miniature (mini.json) runs on
 // lavapipe as a check of the protocol, not of any verdict: every workload x scheme case ran or says
 // why not, every repetition has the same frames, and `lodbench verdict` has one workload per
 // terrain x view. The views defined above the ground keep their height and motion in sample

@@ -9,22 +9,16 @@
 #include <vector>
 
 #include "error.h"
+#include "random.h"
 #include "terrain/parallel_rows.h"
 
 namespace lb {
 namespace {
 
-// splitmix64: a tiny seeded generator whose sequence is fixed by the standard, not the library.
-struct SplitMix {
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  int below(int n) { return int(next() % uint64_t(n)); }
-};
+// A uniform int in [0, n) from the project's splitmix64 stream (random.h).
+int below(SplitMix64& rng, int n) {
+  return int(rng.below(size_t(n)));
+}
 
 // The ridged + fBm base of makeProcedural, rescaled to [0, peak].
 Heightfield base(const TerrainSpec& spec, float peak) {
@@ -53,10 +47,10 @@ Heightfield makeSpikes(const TerrainSpec& spec) {
   Heightfield hf = base(spec, 0.1f * spec.heightScale);
   const int n = hf.width;
   const int count = std::max(1, (n / 64) * (n / 64));
-  SplitMix rng{uint64_t(spec.seed) * 0x2545f4914f6cdd1dull + 1};
+  SplitMix64 rng{uint64_t(spec.seed) * 0x2545f4914f6cdd1dull + 1};
   std::vector<char> blocked(hf.h.size(), 0);
   for (int placed = 0, tries = 0; placed < count && tries < 64 * count; ++tries) {
-    const int x = 2 + rng.below(std::max(1, n - 4)), z = 2 + rng.below(std::max(1, n - 4));
+    const int x = 2 + below(rng, std::max(1, n - 4)), z = 2 + below(rng, std::max(1, n - 4));
     if (x >= n - 1 || z >= n - 1 || blocked[size_t(z) * size_t(n) + size_t(x)]) continue;
     hf.h[size_t(z) * size_t(n) + size_t(x)] = spec.heightScale;
     // Keep spikes isolated: none within 2 samples of another.
@@ -72,9 +66,9 @@ Heightfield makeSpikes(const TerrainSpec& spec) {
 }
 
 int cliffColumn(const TerrainSpec& spec) {
-  SplitMix rng{uint64_t(spec.seed) * 0x9e3779b97f4a7c15ull + 7};
+  SplitMix64 rng{uint64_t(spec.seed) * 0x9e3779b97f4a7c15ull + 7};
   const int third = std::max(1, (spec.size - 1) / 3);
-  return third + rng.below(third);
+  return third + below(rng, third);
 }
 
 Heightfield makeCliff(const TerrainSpec& spec) {
@@ -167,9 +161,9 @@ Heightfield makeVoids(const TerrainSpec& spec) {
 }
 
 VoidPatch voidPatch(uint32_t seed) {
-  SplitMix rng{uint64_t(seed) * 0xd1b54a32d192ed03ull + 3};
+  SplitMix64 rng{uint64_t(seed) * 0xd1b54a32d192ed03ull + 3};
   constexpr int kSize = 120;  // 10% of the tile side: a void the size of a small lake or a radar shadow
-  return {300 + rng.below(1201 - 600 - kSize), 300 + rng.below(1201 - 600 - kSize), kSize};
+  return {300 + below(rng, 1201 - 600 - kSize), 300 + below(rng, 1201 - 600 - kSize), kSize};
 }
 
 }  // namespace lb
