@@ -70,6 +70,22 @@ TEST(Sweep, ShardsPartitionTheCasesDeterministically) {
     for (auto& k : shardCases(c, i, 3)) EXPECT_TRUE(seen.insert(k.id).second) << k.id;
   EXPECT_EQ(seen.size(), all.size());
   EXPECT_EQ(shardCases(c, 1, 3)[0].id, shardCases(c, 1, 3)[0].id);
+  // Two workloads (one terrain x two paths) over two shards: each shard holds one whole workload,
+  // so every scheme of it runs on the same device.
+  for (int s = 0; s < 2; ++s) {
+    auto part = shardCases(c, s, 2);
+    ASSERT_EQ(part.size(), 4u);
+    for (auto& k : part) EXPECT_EQ(k.path, part[0].path) << k.id;
+  }
+  EXPECT_NE(shardCases(c, 0, 2)[0].path, shardCases(c, 1, 2)[0].path);
+  // More shards than workloads: blocks of cases, none left out, none empty.
+  seen.clear();
+  for (int s = 0; s < 3; ++s) {
+    auto part = shardCases(c, s, 3);
+    EXPECT_FALSE(part.empty());
+    for (auto& k : part) seen.insert(k.id);
+  }
+  EXPECT_EQ(seen.size(), all.size());
   int i = 0, n = 0;
   EXPECT_THROW(parseShard("3/3", i, n), InputError);
   EXPECT_THROW(parseShard("x", i, n), InputError);

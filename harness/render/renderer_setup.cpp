@@ -14,6 +14,7 @@
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
+#include "terrain/terrain_cache.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -78,7 +79,8 @@ void Renderer::createTargets() {
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
   // Once per terrain; the format is argued in terrain/normal_map.h.
   const auto tNormals = std::chrono::steady_clock::now();
-  NormalMap normals = computeNormalMap(terrain_);
+  const std::shared_ptr<const NormalMap> kept = sharedNormalMap(terrain_);
+  const NormalMap& normals = *kept;
   setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
   normalMap_ = createImage(ctx_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);

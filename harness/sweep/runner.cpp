@@ -37,10 +37,29 @@ static std::string defaultRunDir(const Config& config) {
   return "results/" + config.name + "/" + id;
 }
 
+// Shards take contiguous blocks of whole workloads (a terrain, path, resolution and grid: the
+// cases a verdict compares), so every scheme of a workload is timed on the same GPU, a shard
+// computes each ground-truth image once and loads each large terrain once per round. With fewer
+// workloads than shards, contiguous blocks of cases instead.
 std::vector<Case> shardCases(const Config& config, int shardIndex, int shardCount) {
   std::vector<Case> all = expandCases(config), out;
-  for (size_t i = 0; i < all.size(); ++i)
-    if (int(i % size_t(shardCount)) == shardIndex) out.push_back(all[i]);
+  std::vector<size_t> unitOf(all.size());  // each case's workload index
+  size_t units = 0;
+  for (size_t i = 0; i < all.size(); ++i) {
+    const Case& c = all[i];
+    const bool same = i > 0 && all[i - 1].terrainLabel == c.terrainLabel && all[i - 1].path == c.path &&
+                      all[i - 1].width == c.width && all[i - 1].height == c.height && all[i - 1].grid == c.grid;
+    if (i > 0 && !same) ++units;
+    unitOf[i] = units;
+  }
+  units = all.empty() ? 0 : units + 1;
+  const bool byWorkload = units >= size_t(shardCount);
+  const size_t n = size_t(shardCount), s = size_t(shardIndex), total = byWorkload ? units : all.size();
+  const size_t begin = (s * total + n - 1) / n, end = ((s + 1) * total + n - 1) / n;
+  for (size_t i = 0; i < all.size(); ++i) {
+    const size_t u = byWorkload ? unitOf[i] : i;
+    if (u >= begin && u < end) out.push_back(all[i]);
+  }
   return out;
 }
 

@@ -30,6 +30,7 @@ std::string keyOf(const TerrainSpec& s) {
 std::mutex gMutex;
 std::string gKey;
 std::shared_ptr<const Heightfield> gKept;
+std::shared_ptr<const NormalMap> gKeptNormals;  // of gKept, made on first request
 
 }  // namespace
 
@@ -41,6 +42,7 @@ std::shared_ptr<const Heightfield> sharedHeightfield(const TerrainSpec& spec) {
     // Another terrain: let the kept one go first, so two large terrains never sit in memory at
     // once on its account (a caller still holding it keeps it alive, as it must).
     gKept.reset();
+    gKeptNormals.reset();
     gKey.clear();
   }
   auto made = std::make_shared<const Heightfield>(makeHeightfield(spec));
@@ -49,6 +51,19 @@ std::shared_ptr<const Heightfield> sharedHeightfield(const TerrainSpec& spec) {
     gKey = key;
     gKept = made;
   }
+  return made;
+}
+
+std::shared_ptr<const NormalMap> sharedNormalMap(const Heightfield& hf) {
+  {
+    std::lock_guard<std::mutex> lock(gMutex);
+    if (gKept.get() != &hf) return std::make_shared<const NormalMap>(computeNormalMap(hf));
+    if (gKeptNormals) return gKeptNormals;
+  }
+  // Computed outside the lock: two threads asking at once both compute it, and the same map wins.
+  auto made = std::make_shared<const NormalMap>(computeNormalMap(hf));
+  std::lock_guard<std::mutex> lock(gMutex);
+  if (gKept.get() == &hf && !gKeptNormals) gKeptNormals = made;
   return made;
 }
 

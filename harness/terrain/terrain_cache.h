@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "terrain/heightfield.h"
+#include "terrain/normal_map.h"
 
 namespace lb {
 
@@ -15,5 +16,10 @@ constexpr long long kKeptTerrainSamples = 2048ll * 2048ll;
 // makeHeightfield(spec), or the kept terrain when it was made from the same spec and, for a file,
 // the file still has the size and modification time it had then. Thread-safe.
 std::shared_ptr<const Heightfield> sharedHeightfield(const TerrainSpec& spec);
+
+// computeNormalMap(hf), kept with the kept terrain when `hf` is it: every renderer of a tuned
+// search builds one (a dozen per case), and at 32759^2 each map is 4 GiB and seconds of CPU.
+// Thread-safe.
+std::shared_ptr<const NormalMap> sharedNormalMap(const Heightfield& hf);
 
 }  // namespace lb
