@@ -245,7 +245,9 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress output");
   std::string shard;
   bool dryRun = false;
-  run->add_option("--shard", shard, "Run the deterministic subset i/n of the cases: the i-th of n contiguous blocks of whole workloads (terrain, path, resolution, grid), or of cases when there are fewer workloads than shards");
+  run->add_option("--shard", shard,
+                  "Run the deterministic subset i/n of the cases: the i-th of n contiguous blocks of whole workloads "
+                  "(terrain, path, resolution, grid), or of cases when there are fewer workloads than shards");
   run->add_flag("--dry-run", dryRun,
                 "List the cases (of this shard) with their count, estimated time and disk, and exit; opens no device");
   run->add_flag("--rerun-changed", ro.rerunChanged,
