@@ -60,6 +60,7 @@ static int listDevicesCmd() {
         "%s heap %llu MiB)\n",
         side, side, l.maxImageDimension2D, (unsigned long long)(l.maxAllocationBytes >> 20),
         l.sharedHeap ? "one" : "device-local", (unsigned long long)(l.deviceHeapBytes >> 20));
+    std::printf("    %s\n", meshShaderLine(d.mesh).c_str());
   }
   return 0;
 }

@@ -136,6 +136,7 @@ static std::vector<DeviceCandidate> examine(VkInstance instance, std::vector<VkP
     if (p.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(out[i], &f2);
     DeviceCandidate c{int(i), p.deviceName, false, "", deviceLimits(out[i])};
     c.cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    c.mesh = meshShaderLimits(out[i]);
     if (p.apiVersion < VK_API_VERSION_1_3)
       c.rejectReason = "Vulkan " + apiVersionString(p.apiVersion) + " < 1.3 (needs dynamic rendering)";
     else if (!f.tessellationShader)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vk/device_limits.h"
+#include "vk/mesh_shader_limits.h"
 
 namespace lb {
 
@@ -28,6 +29,7 @@ struct DeviceCandidate {
   std::string rejectReason;  // empty when suitable
   DeviceLimits limits;       // the largest terrain it takes (vk/device_limits.h)
   bool cpu = false;          // VK_PHYSICAL_DEVICE_TYPE_CPU: a software rasterizer such as lavapipe
+  MeshShaderLimits mesh;     // what a mesh-shader path could use; not part of suitability
 };
 
 struct Context {
