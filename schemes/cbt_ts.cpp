@@ -5,10 +5,10 @@
 // grid: T(n) = 6 (n - 1) + T(n - 2) triangles (T(1) = 1, T(0) = 0; 96 at n = 8 against cbt's 64),
 // with the same n + 1 vertices on every edge, so neighbouring leaves still share their edges'
 // vertices exactly (shaders/cbt_ts.tese). The leaves go out in draws of at most
-// kMaxVerticesPerDraw / (n + 1)^2 patches (render/renderer.h: lavapipe's limit on tessellated
+// kMaxVerticesPerDraw / (n + 1)^2 patches (render/draw_limits.h: lavapipe's limit on tessellated
 // vertices a draw; (n + 1)^2 bounds the ring layout's vertices), written by the batch pass and drawn
 // with one vkCmdDrawIndexedIndirectCount, on every device alike.
-#include "render/renderer.h"
+#include "render/draw_limits.h"
 #include "schemes/cbt.h"
 #include "shaders/cbt_params.h"
 

@@ -26,7 +26,7 @@
 #define LB_MODE_WIREFRAME 2
 #define LB_MODE_ERROR 3  // R32F target: screen-space geometric error in pixels
 // The modes below reach terrain.frag never or only with rasterization discarded; they are listed
-// so that lb::RenderMode (render/renderer.h) is checked against every value.
+// so that lb::RenderMode (render/frame_data.h) is checked against every value.
 #define LB_MODE_HISTOGRAM 4
 #define LB_MODE_DEPTH 5
 #define LB_MODE_FRONTEND 6

@@ -13,6 +13,7 @@
 #include "config/config.h"
 #include "error.h"
 #include "gpu_fixture.h"
+#include "render/lod_state.h"
 #include "replay/energy_pass.h"
 #include "replay/lod_replay.h"
 #include "report/equal_error.h"
@@ -179,8 +180,8 @@ TEST_F(EnergyPass, StatefulSchemeRestoresItsSnapshotEachLoop) {
   r.setScheme(*findScheme("cbt"), {});
   ASSERT_TRUE(r.statefulLod());
   convergeLod(r, poseOf(0));
-  r.snapshotLodState();
-  const std::vector<uint32_t> snapshot = r.readLodState();
+  r.lodState().snapshot();
+  const std::vector<uint32_t> snapshot = r.lodState().read();
   TimingSpec spec;
   spec.energyWindowS = 0.03;
   spec.energyRounds = 2;
@@ -189,8 +190,8 @@ TEST_F(EnergyPass, StatefulSchemeRestoresItsSnapshotEachLoop) {
   ASSERT_TRUE(e.measured()) << e.reason;
   for (const EnergyRound& k : e.rounds) EXPECT_GT(k.frames, 2);
   // Restoring gives back the snapshot the timed passes start from.
-  r.restoreLodState();
-  EXPECT_EQ(r.readLodState(), snapshot);
+  r.lodState().restore();
+  EXPECT_EQ(r.lodState().read(), snapshot);
 }
 
 // Lowest first; "<" only where the rounds are apart, "≈" (not ranked) where they overlap, and the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "camera/camera_matrices.h"
 #include "gpu_fixture.h"
 #include "schemes/registry.h"
 

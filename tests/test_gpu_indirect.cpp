@@ -4,6 +4,7 @@
 #include "gpu_fixture.h"
 #include "gpu_lod_scheme.h"
 #include "metrics/mesh_cracks.h"
+#include "render/lod_state.h"
 #include "render/uniform_instanced.h"
 
 using namespace lb;
@@ -50,24 +51,24 @@ TEST_F(GpuIndirect, DrawsWhatTheGpuSelectedAndTheSamePixelsAsTheCpuPath) {
 TEST_F(GpuIndirect, StateIsResetSnapshottedAndRestored) {
   Renderer r(gpu(), testTerrain(), {64, 64, 8});
   r.setScheme(gpuUniformScheme(), {{"level", 2}});
-  auto updates = [&] { return r.readLodState()[0]; };
+  auto updates = [&] { return r.lodState().read()[0]; };
   EXPECT_EQ(updates(), 0u);
   for (int i = 0; i < 3; ++i) renderOnce(r, overviewPose());
   EXPECT_EQ(updates(), 3u);
-  r.snapshotLodState();
+  r.lodState().snapshot();
   for (int i = 0; i < 2; ++i) renderOnce(r, overviewPose());
   EXPECT_EQ(updates(), 5u);
-  r.restoreLodState();
+  r.lodState().restore();
   EXPECT_EQ(updates(), 3u);
   renderOnce(r, overviewPose());
   EXPECT_EQ(updates(), 4u);
-  r.resetLodState();
+  r.lodState().reset();
   EXPECT_EQ(updates(), 0u);
-  const std::vector<uint32_t> state = r.readLodState();
+  const std::vector<uint32_t> state = r.lodState().read();
   ASSERT_EQ(state.size(), 4u);
   EXPECT_EQ(state[3], uint32_t(2 * 2 * 6)) << "the footprint's index count, as the scheme set it";
   // The hooks refuse a scheme without GPU state.
   Renderer t(gpu(), testTerrain(), {64, 64, 8});
   t.setScheme(*findScheme("uniform"), {});
-  EXPECT_THROW(t.snapshotLodState(), std::logic_error);
+  EXPECT_THROW(t.lodState().snapshot(), std::logic_error);
 }

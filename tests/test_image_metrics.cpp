@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "camera/camera_matrices.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "metrics/raycast.h"

@@ -12,6 +12,7 @@
 #include <set>
 #include <thread>
 
+#include "camera/camera_matrices.h"
 #include "metrics/raycast.h"
 #include "render/renderer.h"
 #include "replay/measure.h"

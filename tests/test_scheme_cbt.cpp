@@ -8,6 +8,8 @@
 #include "error.h"
 #include "gpu_fixture.h"
 #include "metrics/mesh_cracks.h"
+#include "render/draw_limits.h"
+#include "render/lod_state.h"
 #include "replay/lod_replay.h"
 #include "shaders/cbt_params.h"
 
@@ -44,20 +46,20 @@ TEST_F(Cbt, ConvergesOnEveryShippedPathThenHoldsItsTreeAndConforms) {
   const Heightfield& hf = testTerrain();
   Renderer r(gpu(), hf, {160, 90, 16});
   r.setScheme(cbtScheme(), {});
-  const uint32_t limit = r.convergeLimit();
-  const uint32_t depth = r.readLodState()[LB_CBT_DEPTH];
+  const uint32_t limit = r.lodState().gpuLod().convergeLimit;
+  const uint32_t depth = r.lodState().read()[LB_CBT_DEPTH];
   EXPECT_EQ(limit, 2 * depth + 8);
   for (const std::string& file : shippedPathFiles()) {
     const CameraPose pose = firstPose(file, hf);
     ConvergeResult c = convergeLod(r, pose);
     EXPECT_TRUE(c.converged) << file << ": " << c.updates << " updates";
     EXPECT_LE(c.updates, int(limit)) << file;
-    const std::vector<uint32_t> settled = cbt::withoutCounter(r.readLodState());
+    const std::vector<uint32_t> settled = cbt::withoutCounter(r.lodState().read());
     for (int i = 0; i < 4; ++i) {
-      r.updateLod(pose);
-      EXPECT_EQ(cbt::withoutCounter(r.readLodState()), settled) << file << ": update " << i << " moved the tree";
+      r.lodState().update(pose);
+      EXPECT_EQ(cbt::withoutCounter(r.lodState().read()), settled) << file << ": update " << i << " moved the tree";
     }
-    const std::vector<uint32_t> state = r.readLodState();
+    const std::vector<uint32_t> state = r.lodState().read();
     const std::vector<uint32_t> leaves = cbt::leaves(state);
     EXPECT_EQ(leaves.size(), state[LB_CBT_LEAVES]) << file;
     EXPECT_LE(leaves.size(), state[LB_CBT_CAPACITY]) << file;
@@ -84,13 +86,13 @@ TEST_F(Cbt, EveryUpdateAlongAPathConformsAndTheReplayMeetsIt) {
   auto pose = [&](int f) { return samplePose(path, 10, f, hf); };
   const int frames = std::min(frameCount(path, 10), 40);
   convergeLod(r, pose(0));
-  r.snapshotLodState();
+  r.lodState().snapshot();
   std::vector<uint32_t> timed;
   for (int f = 0; f < frames; ++f) {
     FrameResult fr = renderOnce(r, pose(f));
     timed.push_back(uint32_t(fr.instances));
     EXPECT_EQ(fr.stats.clipInvocations, fr.instances * 16u) << "frame " << f;
-    const std::vector<uint32_t> state = r.readLodState();
+    const std::vector<uint32_t> state = r.lodState().read();
     EXPECT_EQ(state[LB_CBT_OVERFLOW], 0u);
     EXPECT_EQ(cbt::conformity(cbt::leaves(state), state[LB_CBT_LATTICE_LOG2]), "") << "frame " << f;
   }
@@ -134,7 +136,7 @@ TEST_F(Cbt, CbtTsDrawsExactlyCbtsLeavesThroughTheTessellator) {
   bool severalDraws = false;
   for (int f = 0; f < frames; ++f) {
     FrameResult a = renderOnce(instanced, pose(f)), b = renderOnce(tessellated, pose(f));
-    std::vector<uint32_t> treeA = instanced.readLodState(), treeB = tessellated.readLodState();
+    std::vector<uint32_t> treeA = instanced.lodState().read(), treeB = tessellated.lodState().read();
     treeA[LB_CBT_INDEX_COUNT] = treeB[LB_CBT_INDEX_COUNT] = 0;  // their leaf meshes differ
     EXPECT_EQ(treeA, treeB) << "frame " << f;
     EXPECT_EQ(b.instances, a.instances) << "frame " << f;
@@ -179,12 +181,12 @@ TEST_F(Cbt, LeavesBeyondTheCapacityFailTheReplay) {
   r.setScheme(cbtScheme(), {});
   const CameraPose pose = overviewPose();
   convergeLod(r, pose);
-  EXPECT_EQ(r.lodOverflow(), 0u);
-  std::vector<uint32_t> state = r.readLodState();
+  EXPECT_EQ(r.lodState().overflow(), 0u);
+  std::vector<uint32_t> state = r.lodState().read();
   ASSERT_GT(state[LB_CBT_LEAVES], 4u);
   state[LB_CBT_CAPACITY] = 4;
-  r.loadLodState(state);
-  r.snapshotLodState();
+  r.lodState().load(state);
+  r.lodState().snapshot();
   LodReplay replay(r, [&](int) { return pose; }, {});
   try {
     replay.advanceTo(0);
@@ -285,19 +287,19 @@ TEST_F(Cbt, ATinyPoolOverflowsAndTheRulesPoolDoesNot) {
   Renderer tiny(gpu(), hf, {160, 90, 16}), ruled(gpu(), hf, {160, 90, 16});
   tiny.setScheme(cbtScheme(), {{"pool", 8}});
   ruled.setScheme(cbtScheme(), {});
-  EXPECT_EQ(tiny.lodCapacity(), 8u);
-  const std::vector<uint32_t> initial = ruled.readLodState();
-  EXPECT_EQ(ruled.lodCapacity(), std::min(1u << 17, 1u << initial[LB_CBT_DEPTH]));
+  EXPECT_EQ(tiny.lodState().gpuLod().maxInstances, 8u);
+  const std::vector<uint32_t> initial = ruled.lodState().read();
+  EXPECT_EQ(ruled.lodState().gpuLod().maxInstances, std::min(1u << 17, 1u << initial[LB_CBT_DEPTH]));
   convergeLod(ruled, pose);
-  EXPECT_EQ(ruled.lodOverflow(), 0u);
-  const std::vector<uint32_t> settled = ruled.readLodState();
+  EXPECT_EQ(ruled.lodState().overflow(), 0u);
+  const std::vector<uint32_t> settled = ruled.lodState().read();
   ASSERT_GT(settled[LB_CBT_LEAVES], 8u);
   convergeLod(tiny, pose);
-  const std::vector<uint32_t> st = tiny.readLodState();
-  EXPECT_GT(tiny.lodOverflow(), 0u);
+  const std::vector<uint32_t> st = tiny.lodState().read();
+  EXPECT_GT(tiny.lodState().overflow(), 0u);
   EXPECT_EQ(st[LB_CBT_OVERFLOW], st[LB_CBT_LEAVES] - 8u);
   EXPECT_EQ(st[LB_CBT_DISPATCH], 1u) << "a dispatch past the capacity";
-  tiny.snapshotLodState();
+  tiny.lodState().snapshot();
   LodReplay replay(tiny, [&](int) { return pose; }, {});
   try {
     replay.advanceTo(0);
@@ -305,7 +307,7 @@ TEST_F(Cbt, ATinyPoolOverflowsAndTheRulesPoolDoesNot) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("LOD state overflow"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(tiny.loadLodState(settled), std::logic_error);
+  EXPECT_THROW(tiny.lodState().load(settled), std::logic_error);
 }
 
 // converged_state_sha256 is the tree's (the leaf bitfield), not the header's: the terrain scaled by
@@ -324,7 +326,7 @@ TEST_F(Cbt, ConvergedHashCoversTheTreeAloneNotTheHeader) {
   a.setScheme(cbtScheme(), {});
   b.setScheme(cbtScheme(), {});
   ConvergeResult ca = convergeLod(a, pose), cb = convergeLod(b, bigPose);
-  const std::vector<uint32_t> sa = a.readLodState(), sb = b.readLodState();
+  const std::vector<uint32_t> sa = a.lodState().read(), sb = b.lodState().read();
   EXPECT_NE(sa[LB_CBT_MAX_HEIGHT], sb[LB_CBT_MAX_HEIGHT]) << "the headers must differ, or this proves nothing";
   ASSERT_EQ(cbt::leaves(sa), cbt::leaves(sb)) << "the scaled terrain must give the same tree";
   EXPECT_EQ(ca.stateSha256, cb.stateSha256);

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "camera/camera_matrices.h"
 #include "render/instanced.h"
 #include "render/renderer.h"
 #include "render/scheme.h"

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "gpu_fixture.h"
+#include "render/draw_limits.h"
 #include "render/patch_grid.h"
 
 using namespace lb;

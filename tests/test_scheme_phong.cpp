@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "camera/camera_matrices.h"
 #include "gpu_fixture.h"
 #include "render/patch_grid.h"
 #include "schemes/preprocess/density_map.h"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "camera/camera_matrices.h"
 #include "error.h"
 #include "gpu_fixture.h"
 #include "metrics/cracks.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "metrics/image_metrics.h"
-#include "render/renderer.h"
+#include "render/frame_data.h"
 
 namespace lb {
 

@@ -3,12 +3,12 @@
 #include <cstring>
 #include <string>
 
+#include "camera/camera_matrices.h"
 #include "error.h"
 #include "metrics/raycast.h"
 #include "metrics/raycast_shade.h"
 #include "render/gpu_profiler.h"
 #include "render/pipeline.h"
-#include "render/renderer.h"
 #include "shaders/raycast_params.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "render/renderer.h"
+#include "render/frame_data.h"
 
 namespace lb {
 namespace {

@@ -6,8 +6,8 @@
 #include <limits>
 #include <thread>
 
+#include "camera/camera_matrices.h"
 #include "metrics/raycast_shade.h"
-#include "render/renderer.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 

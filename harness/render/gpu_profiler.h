@@ -7,17 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/frame_data.h"
 #include "vk/unique.h"
 
 namespace lb {
 
 struct Context;
-
-struct PipelineStats {
-  uint64_t iaVertices = 0, iaPrimitives = 0, vsInvocations = 0;
-  uint64_t tcsPatches = 0, tesInvocations = 0;
-  uint64_t clipInvocations = 0, clipPrimitives = 0, fsInvocations = 0;
-};
 
 struct GpuSample {
   double gpuMs = 0;  // closing minus opening timestamp, masked to the valid bits, x timestampPeriod
@@ -44,14 +39,10 @@ class GpuProfiler {
   // After the slot's fence: waits for its results (they are available by then).
   GpuSample read(int slot);
 
-  // Mask of the bits the queue's timestamps carry (timestampValidBits; 0 = no timestamps).
-  uint64_t timestampMask() const { return mask_; }
-  double periodNs() const { return periodNs_; }
-
  private:
   Context& ctx_;
   vk::Unique<VkQueryPool> timestamps_, stats_;
-  uint64_t mask_ = 0;
+  uint64_t mask_ = 0;  // the bits the queue's timestamps carry (timestampValidBits; 0: none)
   double periodNs_ = 0;
   std::vector<bool> lodWritten_;
 };

@@ -62,18 +62,18 @@ class InstancedLod {
 // write the instance records (LB_BINDING_INSTANCES) and the indirect draw arguments
 // (LB_BINDING_LOD_ARGS: VkDrawIndexedIndirectCommand, five uints); the renderer then draws the one
 // footprint with vkCmdDrawIndexedIndirect. Stateful schemes (a subdivision tree updated every
-// frame) are measured through the renderer's state hooks: reset, snapshot, restore.
+// frame) are measured through the path's LOD state (render/lod_state.h): reset, snapshot, restore.
 struct GpuLodPass {
   std::string shader;   // shaders/<shader>.comp, the renderer's descriptor set and push constants
   uint32_t groups = 1;  // workgroups dispatched (x)
   // Specialization constant 0 of the shader (a tree level, say), since the passes get no push
-  // constants (Renderer::recordLodPasses says why); < 0: the shader declares none.
+  // constants (render/gpu_indirect_drawer.cpp says why); < 0: the shader declares none.
   int64_t spec = -1;
   // >= 0: dispatched indirectly, VkDispatchIndirectCommand at this word of the state buffer (what
   // an earlier pass or frame wrote there), and `groups` is ignored.
   int64_t indirectWord = -1;
 };
-// What a GPU-indirect scheme may size its instance records by (Renderer::createGpuLod fills it):
+// What a GPU-indirect scheme may size its instance records by (render/gpu_indirect_drawer.cpp fills it):
 // the view budget, that is the LOD viewport in pixels, and the device's limits on the record
 // buffer (one storage buffer, one allocation) and on the workgroups of one dispatch.
 struct GpuLodBudget {
@@ -85,7 +85,7 @@ struct GpuLod {
   Footprint footprint;                 // the mesh every instance draws (its indices: the args' indexCount)
   std::vector<uint32_t> initialState;  // LB_BINDING_LOD_STATE after a reset
   uint32_t maxInstances = 0;           // room for the records the passes write
-  // >= 0: the state word the passes read maxInstances from; Renderer::loadLodState refuses a state
+  // >= 0: the state word the passes read maxInstances from; LodState::load refuses a state
   // that claims more room than this renderer's buffer has.
   int64_t capacityWord = -1;
   std::vector<GpuLodPass> passes;  // every frame, in order, with barriers between them

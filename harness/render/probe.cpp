@@ -6,8 +6,12 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "camera/camera_matrices.h"
+#include "render/draw_limits.h"
+#include "render/gpu_profiler.h"
 #include "render/patch_grid.h"
 #include "render/pipeline.h"
+#include "render/scheme.h"
 #include "stats.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"

@@ -7,8 +7,7 @@
 #include <vector>
 
 #include "camera/camera_path.h"
-#include "render/gpu_profiler.h"
-#include "render/renderer.h"
+#include "render/frame_data.h"
 
 namespace lb {
 

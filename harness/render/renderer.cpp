@@ -1,16 +1,18 @@
-// The frame loop: uniforms, command recording with split draws, queries read after the fence.
+// The frame loop: uniforms, command recording around the draw path's draws, queries read after
+// the fence, and the measurement passes' read-backs.
 #include "render/renderer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
+#include "camera/camera_matrices.h"
 #include "camera/camera_path.h"
 #include "render/compute_pass.h"
 #include "render/image_io.h"
+#include "render/lod_state.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -23,31 +25,7 @@ static double nowMs() {
   return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
 }
 
-CameraMatrices cameraMatrices(const CameraPose& pose, float aspect, float extent) {
-  CameraMatrices m;
-  m.eye = pose.eye;
-  glm::vec3 dir = pose.target - pose.eye;
-  // Looking straight down makes lookAt's up vector degenerate; pick another one then.
-  glm::vec3 up = std::abs(glm::normalize(dir).y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-  m.view = glm::lookAt(pose.eye, pose.target, up);
-  m.proj = glm::perspective(glm::radians(pose.fovDeg), aspect, extent * 1e-4f, extent * 4.0f);
-  m.proj[1][1] *= -1.0f;  // Vulkan clip space has y down
-  return m;
-}
-
-void frustumPlanes(const glm::mat4& vp, glm::vec4 planes[6]) {
-  glm::vec4 r0(vp[0][0], vp[1][0], vp[2][0], vp[3][0]), r1(vp[0][1], vp[1][1], vp[2][1], vp[3][1]),
-      r2(vp[0][2], vp[1][2], vp[2][2], vp[3][2]), r3(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
-  planes[0] = r3 + r0;
-  planes[1] = r3 - r0;
-  planes[2] = r3 + r1;
-  planes[3] = r3 - r1;
-  planes[4] = r2;  // depth in [0,1]
-  planes[5] = r3 - r2;
-  for (int i = 0; i < 6; ++i) planes[i] /= glm::length(glm::vec3(planes[i]));
-}
-
-void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod) {
+FrameUniforms Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod) {
   // The LOD resolution sets the projection and the pixel units, so an image at another size keeps
   // the case's tessellation exactly (RenderSettings::lodWidth).
   const float lodW = float(settings_.lodWidth > 0 ? settings_.lodWidth : settings_.width);
@@ -67,12 +45,16 @@ void Renderer::fillUniforms(int slotIndex, const CameraPose& view, const CameraP
   u.origin = glm::vec4(float(terrain_.originX), float(terrain_.originZ), 0.0f, 0.0f);
   scheme_->update(u, params_);
   std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
-  if (lod_) selectInstances(slots_[size_t(slotIndex)], slotIndex, u);
-  // The GPU decides how many instances: room for as many as the passes may write.
-  if (gpuIndirect_ && captureMeshNext_)
-    prepareMeshCapture(
-        uint64_t(lodFrozen_ ? lastLodInstances_ : gpuLod_.maxInstances) *
-        (gpuLod_.trianglesPerInstance > 0 ? gpuLod_.trianglesPerInstance : footprintRanges_[0].indexCount / 3));
+  return u;
+}
+
+void Renderer::prepareFrame(int slotIndex, const CameraPose& view, const CameraPose& lod) {
+  const FrameUniforms u = fillUniforms(slotIndex, view, lod);
+  Slot& slot = slots_[size_t(slotIndex)];
+  const double start = nowMs();
+  const uint64_t triangles = path_->prepare(slotIndex, u, slot.readback || captureMeshNext_);
+  if (captureMeshNext_) prepareMeshCapture(triangles);
+  slot.prepareMs = nowMs() - start;
 }
 
 void Renderer::prepareMeshCapture(uint64_t triangles) {
@@ -80,84 +62,35 @@ void Renderer::prepareMeshCapture(uint64_t triangles) {
     meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
     if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
     mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    writeInstanceDescriptors();
+    bindPathBuffers();
   }
   auto* head = static_cast<uint32_t*>(mesh_.mapped);
   head[0] = 0;
   head[1] = meshCapacity_;
 }
 
-void Renderer::selectInstances(Slot& slot, int slotIndex, const FrameUniforms& u) {
-  const double start = nowMs();
-  selection_.countersWanted = slot.readback || captureMeshNext_;
-  lod_->select(u, selection_);
-  if (selection_.instances.size() != footprintRanges_.size())
-    throw std::logic_error("scheme '" + scheme_->info().name + "' selected instances for " +
-                           std::to_string(selection_.instances.size()) + " footprints, it has " +
-                           std::to_string(footprintRanges_.size()));
-  const size_t total = selection_.instanceCount();
-  if (total > instanceCapacity_) {
-    // Frames in flight read the old buffer: wait for them (rare: the capacity only grows).
-    finish();
-    instanceCapacity_ = uint32_t(std::max<size_t>(256, total + total / 2));
-    instances_ = createBuffer(ctx_, VkDeviceSize(sizeof(InstanceRecord)) * instanceCapacity_ * kSlots,
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    writeInstanceDescriptors();
-  }
-  // Each slot owns a region; draws reach it through firstInstance, which gl_InstanceIndex includes.
-  auto* out = static_cast<InstanceRecord*>(instances_.mapped) + size_t(slotIndex) * instanceCapacity_;
-  slot.instFirst.assign(footprintRanges_.size(), 0);
-  slot.instCount.assign(footprintRanges_.size(), 0);
-  uint32_t next = uint32_t(slotIndex) * instanceCapacity_;
-  uint64_t triangles = 0;
-  for (size_t f = 0; f < footprintRanges_.size(); ++f) {
-    const auto& records = selection_.instances[f];
-    if (!records.empty())  // an empty vector's data() may be null, which memcpy must not get
-      std::memcpy(out, records.data(), records.size() * sizeof(InstanceRecord));
-    out += records.size();
-    slot.instFirst[f] = next;
-    slot.instCount[f] = uint32_t(records.size());
-    next += uint32_t(records.size());
-    triangles += uint64_t(records.size()) * (footprintRanges_[f].indexCount / 3);
-  }
-  if (captureMeshNext_) prepareMeshCapture(triangles);
-  slot.lodCpuMs = nowMs() - start;
-}
-
-void Renderer::drawInstances(VkCommandBuffer cmd, const Slot& slot) {
-  for (size_t f = 0; f < footprintRanges_.size(); ++f)
-    if (slot.instCount[f] > 0)
-      vkCmdDrawIndexed(cmd, footprintRanges_[f].indexCount, slot.instCount[f], footprintRanges_[f].firstIndex,
-                       footprintRanges_[f].vertexOffset, slot.instFirst[f]);
-}
-
-void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) {
-  VkPipeline pipe = pipeline(mode, capture);
-  VkCommandBuffer cmd = slot.cmd;
-  VK_CHECK(vkResetCommandBuffer(cmd, 0));
-  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
-  profiler_.reset(cmd, slotIndex);
-  const Image& target = mode == RenderMode::Error ? errorTarget_ : color_;
-  const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
-  const bool depth = mode != RenderMode::Frontend;  // frontend discards all primitives: no attachments
-  // Earlier frames may still write these targets: order after them, discard old contents.
-  if (colour)
-    imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+// Earlier frames may still write the targets: order after them, discard old contents.
+void Renderer::beginTargets(VkCommandBuffer cmd, RenderMode mode) {
+  if (mode != RenderMode::Depth && mode != RenderMode::Frontend)
+    imageBarrier(cmd, (mode == RenderMode::Error ? errorTarget_ : color_).image, VK_IMAGE_ASPECT_COLOR_BIT,
+                 VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  if (depth)
+  if (mode != RenderMode::Frontend)  // frontend discards all primitives: no attachments
     imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+}
+
+void Renderer::beginRendering(VkCommandBuffer cmd, RenderMode mode) {
+  const bool colour = mode != RenderMode::Depth && mode != RenderMode::Frontend;
+  const bool depth = mode != RenderMode::Frontend;
   VkRenderingAttachmentInfo ca{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  ca.imageView = target.view;
+  ca.imageView = (mode == RenderMode::Error ? errorTarget_ : color_).view;
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -177,40 +110,45 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   ri.colorAttachmentCount = colour ? 1 : 0;
   ri.pColorAttachments = colour ? &ca : nullptr;
   ri.pDepthAttachment = depth ? &da : nullptr;
+  vkCmdBeginRendering(cmd, &ri);
+}
 
+void Renderer::copyToReadback(VkCommandBuffer cmd, const Slot& slot, const Image& target) {
+  imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {uint32_t(settings_.width), uint32_t(settings_.height), 1};
+  VkBuffer dst = slot.target ? slot.target->buffer : readback_.buffer;
+  vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
+}
+
+void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) {
+  VkPipeline pipe = pipeline(mode, capture);
+  VkCommandBuffer cmd = slot.cmd;
+  VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  profiler_.reset(cmd, slotIndex);
+  beginTargets(cmd, mode);
   uint32_t dynOffset = uint32_t(uniformStride_ * VkDeviceSize(slotIndex));
   profiler_.timestampTop(cmd, slotIndex);
-  // The LOD timestamp closes the LOD work: the GPU-indirect path's compute passes, or nothing on the
-  // instanced path, whose selection ran on the CPU before this frame (FrameResult::lodCpuMs).
-  const bool instanced = lod_ != nullptr || gpuIndirect_;
-  if (gpuIndirect_ && !lodFrozen_) recordLodPasses(cmd, dynOffset);
-  if (instanced) profiler_.timestampLod(cmd, slotIndex);
-  vkCmdBeginRendering(cmd, &ri);
+  // The LOD timestamp closes the LOD work (a path's compute passes, or nothing where its LOD ran
+  // on the CPU before this frame: FrameResult::lodCpuMs).
+  if (path_->lodApart()) {
+    path_->recordLod(cmd, dynOffset);
+    profiler_.timestampLod(cmd, slotIndex);
+  }
+  beginRendering(cmd, mode);
   // Inside the render pass: counts the draws only (no attachment load/clear work), and lets the
   // planted slowdown below draw after the query ends.
-  VkDeviceSize zero = 0;
-  // Split so no draw can exceed kMaxVerticesPerDraw tessellated vertices or kMaxIndicesPerDraw indices.
   auto drawAll = [&](VkPipeline p) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bindings_.pipelineLayout, 0, 1, &bindings_.set, 1,
                             &dynOffset);
-    vkCmdBindVertexBuffers(cmd, 0, 1, vertices_.buffer.ptr(), &zero);
-    vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
-    if (gpuIndirect_) {
-      drawLod(cmd);
-      return;
-    }
-    if (instanced) {
-      drawInstances(cmd, slot);
-      return;
-    }
-    for (uint32_t first = 0; first < patchCount_; first += patchesPerDraw_) {
-      uint32_t count = std::min(patchesPerDraw_, patchCount_ - first);
-      DrawPush push{first};
-      vkCmdPushConstants(cmd, bindings_.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                         sizeof push, &push);
-      vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
-    }
+    path_->recordDraws(cmd, slotIndex);
   };
   // A wireframe alone is a solid mesh of lines at small sizes: its lines are blended over the
   // shaded frame, drawn first (outside the statistics query, so the counters are one frame's).
@@ -218,61 +156,20 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   profiler_.beginStats(cmd, slotIndex);
   drawAll(pipe);
   profiler_.endStats(cmd, slotIndex);
-  // The planted slowdown (tests of the regression gate) covers the tessellation and instanced paths;
-  // the GPU-indirect path's instance count is the GPU's, so it has none.
-  const bool planted =
-      settings_.testSlowdown > 0 && mode == RenderMode::Shaded && !capture && !slot.readback && !gpuIndirect_;
-  if (planted && instanced) {
-    // Planted regression on the instanced path: the first fraction of every footprint's instances again.
-    const double s = std::min(1.0, settings_.testSlowdown);
-    for (size_t f = 0; f < footprintRanges_.size(); ++f) {
-      uint32_t n = uint32_t(std::floor(slot.instCount[f] * s));
-      if (n > 0)
-        vkCmdDrawIndexed(cmd, footprintRanges_[f].indexCount, n, footprintRanges_[f].firstIndex,
-                         footprintRanges_[f].vertexOffset, slot.instFirst[f]);
-    }
-  } else if (planted) {
-    // Planted regression (tests only), after the statistics query and before the closing timestamp:
-    // the first fraction s of each eighth of the patches is drawn again (the share spreads over the
-    // grid), split like the draws above, so GPU time grows by about s while the counters stay exact.
-    const double s = std::min(1.0, settings_.testSlowdown);
-    constexpr uint32_t kBlocks = 8;
-    for (uint32_t b = 0; b < kBlocks; ++b) {
-      uint32_t begin = patchCount_ * b / kBlocks, end = patchCount_ * (b + 1) / kBlocks;
-      uint32_t last = begin + uint32_t(std::floor(end * s) - std::floor(begin * s));  // floor(s * patches) in all
-      for (uint32_t first = begin; first < last; first += patchesPerDraw_) {
-        uint32_t count = std::min(patchesPerDraw_, last - first);
-        DrawPush push{first};
-        vkCmdPushConstants(cmd, bindings_.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           sizeof push, &push);
-        vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
-      }
-    }
-  }
+  const bool timed = mode == RenderMode::Shaded && !capture && !slot.readback;
+  // Planted regression (tests of the regression gate), after the statistics query and before the
+  // closing timestamp, so GPU time grows while the counters stay exact.
+  if (settings_.testSlowdown > 0 && timed) path_->recordSlowdown(cmd, slotIndex, std::min(1.0, settings_.testSlowdown));
   // A control scheme's planted multiple (SchemeInfo::drawRepeat): the whole frame again.
-  if (scheme_ && scheme_->info().drawRepeat > 1 && mode == RenderMode::Shaded && !capture && !slot.readback)
+  if (timed)
     for (int k = 1; k < scheme_->info().drawRepeat; ++k) drawAll(pipe);
   vkCmdEndRendering(cmd);
   profiler_.timestampBottom(cmd, slotIndex);
-  if (gpuIndirect_) {  // the arguments the passes wrote, for FrameResult::instances
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
-                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    copyLodArgs(cmd, slotIndex);
-  }
-  if (slot.readback) {
-    imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {uint32_t(settings_.width), uint32_t(settings_.height), 1};
-    VkBuffer dst = slot.target ? slot.target->buffer : readback_.buffer;
-    vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
-  }
+  path_->recordAfterDraws(cmd, slotIndex);
+  if (slot.readback) copyToReadback(cmd, slot, mode == RenderMode::Error ? errorTarget_ : color_);
   if (capture || mode == RenderMode::Histogram) {
     // The geometry stage may only be named where the device enables geometry shaders.
-    VkPipelineStageFlags2 writers =
-        instanced ? VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT : VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
+    VkPipelineStageFlags2 writers = path_->stages().storeStage;
     if (ctx_.enabledFeatures.geometryShader) writers |= VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
     memoryBarrier(cmd, writers, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_HOST_READ_BIT);
@@ -287,14 +184,14 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
 
 void Renderer::submitFrame(int frameIndex, const CameraPose& view, const CameraPose& lod, RenderMode mode,
                            bool capture) {
-  if (!scheme_) throw std::runtime_error("Renderer::submitFrame before setScheme");
+  if (!path_) throw std::runtime_error("Renderer::submitFrame before setScheme");
   double start = nowMs();
   int si = nextSlot_;
   nextSlot_ = (nextSlot_ + 1) % kSlots;
   Slot& slot = slots_[size_t(si)];
   if (slot.busy) collect(si);  // the frame kSlots ago; the one just before keeps running
   double ownStart = nowMs();   // the harness's own cost starts after the wait for the old frame
-  fillUniforms(si, view, lod);
+  prepareFrame(si, view, lod);
   record(slot, si, mode, capture);
   VkSubmitInfo sub{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   sub.commandBufferCount = 1;
@@ -322,19 +219,7 @@ void Renderer::collect(int si) {
   r.stats = sample.stats;
   r.lodMs = sample.lodMs;
   r.drawMs = sample.drawMs;
-  if (gpuIndirect_) {
-    const LodDrawn drawn = lodDrawn(si);
-    r.instances = drawn.instances;
-    r.draws = drawn.draws;
-  } else if (lod_) {
-    r.lodCpuMs = slot.lodCpuMs;
-    for (uint32_t n : slot.instCount) {
-      r.instances += n;
-      r.draws += n > 0 ? 1 : 0;
-    }
-  } else {
-    r.draws = drawCount();
-  }
+  path_->collect(si, slot.prepareMs, r);
   r.harnessMs = slot.harnessMs + (nowMs() - readStart);
   completed_.push_back(r);
   slot.busy = false;
@@ -376,21 +261,16 @@ void Renderer::renderInto(const CameraPose& view, const CameraPose& lod, RenderM
   if (result && !done.empty()) *result = done.back();
 }
 
-uint64_t TriangleHistogram::total() const {
-  uint64_t t = offscreen + backfacing;
-  for (uint64_t b : bins) t += b;
-  return t;
-}
-
 TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
   finish();
   std::memset(histogram_.mapped, 0, size_t(histogram_.size));
-  captureMeshNext_ = lod_ != nullptr || gpuIndirect_;
+  captureMeshNext_ = path_ && path_->stages().meshCapture;
   submitFrame(-1, view, lod, RenderMode::Histogram);
   finish();
+  const bool mesh = captureMeshNext_;
   captureMeshNext_ = false;
   capturedMesh_.clear();
-  if (lod_ || gpuIndirect_) {
+  if (mesh) {
     const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
     if (head[0] > head[1])
       throw std::logic_error("mesh capture: " + std::to_string(head[0]) + " triangles drawn, room for " +
@@ -420,14 +300,36 @@ std::vector<float> Renderer::renderErrorMap(const CameraPose& view, const Camera
 
 std::vector<float> Renderer::capturedLevels() {
   finish();
-  const auto* p = static_cast<const float*>(capture_.mapped);
-  return std::vector<float>(p, p + capture_.size / sizeof(float));
+  const Buffer& capture = path_ && path_->buffers().capture ? *path_->buffers().capture : placeholders_[1];
+  const auto* p = static_cast<const float*>(capture.mapped);
+  return std::vector<float>(p, p + capture.size / sizeof(float));
 }
 
 SchemeTexture Renderer::readSchemeTexture() {
   finish();
   return {int(schemeTex_.width), int(schemeTex_.height), readImageRgba32f(ctx_, schemeTex_, schemeTexChannels_),
           schemeTexChannels_};
+}
+
+const Selection& Renderer::lastSelection() const {
+  static const Selection kNone;
+  const Selection* s = path_ ? path_->selection() : nullptr;
+  return s ? *s : kNone;
+}
+
+LodState& Renderer::lodState() {
+  LodState* s = path_ ? path_->lodState() : nullptr;
+  if (!s) throw std::logic_error("LOD state hooks: the scheme is not GPU-indirect");
+  return *s;
+}
+
+bool Renderer::statefulLod() const {
+  return hasLodState() && path_->lodState()->gpuLod().convergeLimit > 0;
+}
+
+void Renderer::setUniformParams(const ParamValues& given) {
+  params_ = resolveParams(scheme_->info(), given);
+  scheme_->validate(params_);
 }
 
 }  // namespace lb

@@ -1,4 +1,4 @@
-// Renderer construction: targets, terrain grid, descriptors and pipelines.
+// Renderer construction: targets, descriptors, the scheme's draw path and pipelines by mode.
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -8,7 +8,6 @@
 
 #include "error.h"
 #include "render/compute_pass.h"
-#include "render/patch_grid.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -31,14 +30,6 @@ static_assert(int(RenderMode::Shaded) == LB_MODE_SHADED && int(RenderMode::Heatm
 static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;
 static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 static constexpr VkFormat kErrorFormat = VK_FORMAT_R32_SFLOAT;
-
-uint32_t maxVerticesPerPatch(float level, Partitioning partitioning) {
-  // Fractional modes round the segment count up to the next even/odd integer.
-  int seg = int(std::ceil(std::max(level, 1.0f)));
-  if (partitioning != Partitioning::Integer) seg += 1;
-  seg = std::min(seg, 64);
-  return uint32_t(seg + 1) * uint32_t(seg + 1);  // the quad domain bounds the triangle domain too
-}
 
 Renderer::Renderer(Context& ctx, const Heightfield& terrain, const RenderSettings& settings)
     : ctx_(ctx), terrain_(terrain), settings_(settings), profiler_(ctx, kSlots) {
@@ -91,92 +82,6 @@ void Renderer::createTargets() {
   uniforms_ = createBuffer(ctx_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
 
-void Renderer::createGrid() {
-  for (Buffer* b : {&vertices_, &indices_, &bounds_, &capture_, &schemeBuf_, &instances_, &mesh_, &lodState_,
-                    &lodSnapshot_, &lodArgs_, &lodArgsReadback_})
-    *b = {};
-  lod_.reset();
-  footprintRanges_.clear();
-  selection_ = {};
-  instanceCapacity_ = meshCapacity_ = 0;
-  gpuIndirect_ = false;
-  gpuLod_ = {};
-  lodPipelines_.clear();
-  if (scheme_->info().path == DrawPath::InstancedGrid) {
-    createFootprints();
-    return;
-  }
-  if (scheme_->info().path == DrawPath::GpuIndirect) {
-    createGpuLod();
-    return;
-  }
-  Topology topo = scheme_->info().topology;
-  controlPoints_ = controlPointCount(topo);
-  PatchGeometry g = scheme_->patchGeometry(terrain_, params_, settings_.grid);
-  if (g.vertices.empty()) {
-    g.vertices = gridVertices(settings_.grid, terrain_.extent);
-    g.indices = patchIndices(settings_.grid, topo);
-    g.bounds = patchHeightBounds(terrain_, settings_.grid, topo);
-  }
-  // Schemes lay patches out terrain-locally; the terrain's origin moves them into the world, in
-  // double and then rounded to float, as an engine without camera-relative coordinates would.
-  if ((terrain_.originX != 0.0 || terrain_.originZ != 0.0) && !g.schemeUnits)
-    for (glm::vec2& v : g.vertices)
-      v = glm::vec2(float(double(v.x) + terrain_.originX), float(double(v.y) + terrain_.originZ));
-  patchCount_ = uint32_t(g.indices.size() / controlPoints_);
-  if (patchCount_ == 0 || g.indices.size() % controlPoints_ != 0 || g.bounds.size() != patchCount_)
-    throw std::logic_error("scheme '" + scheme_->info().name + "' supplied inconsistent patch geometry");
-  for (uint32_t i : g.indices)
-    if (i >= g.vertices.size()) throw std::logic_error("scheme '" + scheme_->info().name + "': index out of range");
-  // Schemes without a buffer still get a valid binding.
-  if (g.schemeBuffer.empty()) g.schemeBuffer.assign(4, 0.0f);
-  auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-  vertices_ = createBufferWithData(ctx_, g.vertices.data(), bytes(g.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  indices_ = createBufferWithData(ctx_, g.indices.data(), bytes(g.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  bounds_ = createBufferWithData(ctx_, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  schemeBuf_ =
-      createBufferWithData(ctx_, g.schemeBuffer.data(), bytes(g.schemeBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  capture_ = createBuffer(ctx_, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-  std::memset(capture_.mapped, 0, size_t(capture_.size));
-  uint32_t perPatch = maxVerticesPerPatch(scheme_->maxLevel(params_), scheme_->partitioning(params_));
-  patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));
-}
-
-void Renderer::createFootprints() {
-  const std::string& name = scheme_->info().name;
-  lod_ = scheme_->instancedLod(terrain_, params_);
-  if (!lod_) throw std::logic_error("scheme '" + name + "' is instanced but supplies no InstancedLod");
-  std::vector<glm::vec2> vertices;
-  std::vector<uint32_t> indices;
-  for (const Footprint& f : lod_->footprints()) {
-    if (f.indices.empty() || f.indices.size() % 3 != 0)
-      throw std::logic_error("scheme '" + name + "': footprint '" + f.name + "' is no triangle list");
-    for (uint32_t i : f.indices)
-      if (i >= f.vertices.size())
-        throw std::logic_error("scheme '" + name + "': footprint '" + f.name + "' index out of range");
-    footprintRanges_.push_back({uint32_t(indices.size()), uint32_t(f.indices.size()), int32_t(vertices.size())});
-    vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
-    indices.insert(indices.end(), f.indices.begin(), f.indices.end());
-  }
-  if (footprintRanges_.empty()) throw std::logic_error("scheme '" + name + "' supplied no footprints");
-  auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-  vertices_ = createBufferWithData(ctx_, vertices.data(), bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  indices_ = createBufferWithData(ctx_, indices.data(), bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  minimalPatchBuffers();
-}
-
-void Renderer::minimalPatchBuffers() {
-  // No patches: the bindings the tessellation path reads stay valid and unused.
-  const float zeros[8] = {};
-  bounds_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  schemeBuf_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  capture_ = createBuffer(ctx_, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-  std::memset(capture_.mapped, 0, size_t(capture_.size));
-  patchCount_ = 0;
-  patchesPerDraw_ = 1;
-}
-
 void Renderer::createDescriptors() {
   const VkShaderStageFlags all = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
   bindings_ =
@@ -202,7 +107,19 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   scheme_ = &scheme;
   params_ = resolveParams(scheme.info(), params);
   scheme.validate(params_);
-  createGrid();
+  path_.reset();
+  for (Buffer* b : {&mesh_, &placeholders_[0], &placeholders_[1], &placeholders_[2], &placeholders_[3],
+                    &placeholders_[4], &placeholders_[5]})
+    *b = {};
+  meshCapacity_ = 0;
+  PathEnv env{ctx_, terrain_, settings_, scheme, params_, bindings_, kSlots};
+  env.finish = [this] { finish(); };
+  env.rebind = [this] { bindPathBuffers(); };
+  env.uniforms = [this](const CameraPose& pose) {
+    fillUniforms(nextSlot_, pose, pose);
+    return UniformSlot{nextSlot_, uint32_t(uniformStride_ * VkDeviceSize(nextSlot_))};
+  };
+  path_ = makePathDrawer(env);
   schemeTex_ = {};
   const auto tPreprocess = std::chrono::steady_clock::now();
   // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
@@ -240,8 +157,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo ni{linearSampler_, normalMap_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorBufferInfo bb{bounds_.buffer, 0, VK_WHOLE_SIZE}, cb{capture_.buffer, 0, VK_WHOLE_SIZE},
-      sb{schemeBuf_.buffer, 0, VK_WHOLE_SIZE}, hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
   auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* img,
                    const VkDescriptorBufferInfo* buf) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -257,37 +173,49 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &ub),
       write(LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &hi, nullptr),
       write(LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &si, nullptr),
-      write(LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &bb),
-      write(LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &cb),
-      write(LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &sb),
       write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
       write(LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &ni, nullptr),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
-  writeInstanceDescriptors();
+  bindPathBuffers();
 }
 
-void Renderer::writeInstanceDescriptors() {
-  // These bindings exist on every path (one pipeline layout); minimal buffers until a scheme or a frame needs more.
-  if (!instances_.buffer) {
-    instanceCapacity_ = 0;
-    instances_ = createBuffer(ctx_, sizeof(InstanceRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-  }
+void Renderer::bindPathBuffers() {
+  // A binding the path leaves empty gets a small placeholder; the capture's is read back
+  // (capturedLevels), so it is host-visible and zeroed like the mesh capture's.
+  const uint32_t zeros[8] = {};
+  auto placeholder = [&](size_t k, const Buffer* own) -> const Buffer& {
+    if (own) return *own;
+    Buffer& b = placeholders_[k];
+    if (b.buffer) return b;
+    if (k == 1 || k == 3) {  // capture, instances: host-visible
+      b = createBuffer(ctx_, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+      std::memset(b.mapped, 0, size_t(b.size));
+    } else {
+      b = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    }
+    return b;
+  };
   if (!mesh_.buffer) {
     meshCapacity_ = 0;
     mesh_ = createBuffer(ctx_, 16 + 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     std::memset(mesh_.mapped, 0, size_t(mesh_.size));
   }
-  const uint32_t zeros[8] = {};
-  for (Buffer* b : {&lodState_, &lodArgs_})
-    if (!b->buffer) *b = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  const VkDescriptorBufferInfo infos[4] = {{instances_.buffer, 0, VK_WHOLE_SIZE},
-                                           {mesh_.buffer, 0, VK_WHOLE_SIZE},
-                                           {lodState_.buffer, 0, VK_WHOLE_SIZE},
-                                           {lodArgs_.buffer, 0, VK_WHOLE_SIZE}};
-  const uint32_t targets[4] = {LB_BINDING_INSTANCES, LB_BINDING_MESH, LB_BINDING_LOD_STATE, LB_BINDING_LOD_ARGS};
-  VkWriteDescriptorSet w[4];
-  for (int i = 0; i < 4; ++i) {
+  const PathBuffers own = path_->buffers();
+  const Buffer* buffers[7] = {&placeholder(0, own.bounds),
+                              &placeholder(1, own.capture),
+                              &placeholder(2, own.schemeBuf),
+                              &placeholder(3, own.instances),
+                              &placeholder(4, own.lodState),
+                              &placeholder(5, own.lodArgs),
+                              &mesh_};
+  const uint32_t targets[7] = {LB_BINDING_PATCH_BOUNDS, LB_BINDING_CAPTURE,   LB_BINDING_SCHEME_BUF,
+                               LB_BINDING_INSTANCES,    LB_BINDING_LOD_STATE, LB_BINDING_LOD_ARGS,
+                               LB_BINDING_MESH};
+  VkDescriptorBufferInfo infos[7];
+  VkWriteDescriptorSet w[7];
+  for (int i = 0; i < 7; ++i) {
+    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     w[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w[i].dstSet = bindings_.set;
     w[i].dstBinding = targets[i];
@@ -295,13 +223,13 @@ void Renderer::writeInstanceDescriptors() {
     w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     w[i].pBufferInfo = &infos[i];
   }
-  vkUpdateDescriptorSets(ctx_.device, 4, w, 0, nullptr);
+  vkUpdateDescriptorSets(ctx_.device, 7, w, 0, nullptr);
 }
 
 VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   int key = int(mode) * 2 + (capture ? 1 : 0);
   if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
-  const SchemeInfo& info = scheme_->info();
+  const GeometryStages g = path_->stages();
   if (mode == RenderMode::Wireframe && !ctx_.enabledFeatures.fillModeNonSolid)
     throw FeatureMissing("device lacks fillModeNonSolid: wireframe images are unavailable");
   bool histogram = mode == RenderMode::Histogram;
@@ -319,9 +247,8 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   } fragValues{int(mode), settings_.testHeightNormals};
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
-  // The instanced path's histogram pass also captures the drawn mesh (analytic cracks).
-  const bool instanced = info.path != DrawPath::Tessellation;
-  VkBool32 meshValue = instanced;
+  // Paths with instances capture the drawn mesh in the histogram pass (analytic cracks).
+  VkBool32 meshValue = g.meshCapture;
   VkSpecializationMapEntry meshEntry{2, 0, sizeof(VkBool32)};
   VkSpecializationInfo meshSpec{1, &meshEntry, sizeof(VkBool32), &meshValue};
   VkSpecializationMapEntry fragEntries[2] = {{0, offsetof(FragSpec, mode), sizeof(int)},
@@ -331,20 +258,17 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
 
   TessPipelineDesc d;
   d.layout = bindings_.pipelineLayout;
-  if (instanced && info.tesc.empty()) {
-    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, info.vert + ".vert.spv"}};
+  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, g.vert}};
+  if (g.tesc.empty()) {
     d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   } else {
-    // A GPU-indirect scheme with a control shader (cbt-ts) draws its instances as patches.
-    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, instanced ? info.vert + ".vert.spv" : "terrain.vert.spv"},
-                {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, info.tesc + ".tesc.spv", &captureSpec},
-                {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-                 info.tese + "_" + partitioningName(scheme_->partitioning(params_)) + ".tese.spv"}};
+    d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, g.tesc, &captureSpec});
+    d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, g.tese});
   }
   if (colour) d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, "terrain.frag.spv", &modeSpec});
   if (histogram)
-    d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", instanced ? &meshSpec : nullptr});
-  d.controlPoints = controlPoints_;
+    d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", g.meshCapture ? &meshSpec : nullptr});
+  d.controlPoints = g.controlPoints;
   d.width = uint32_t(settings_.width);
   d.height = uint32_t(settings_.height);
   d.polygonMode = wire ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;

@@ -64,9 +64,9 @@ std::vector<std::string> writeCaseImages(const CaseImageInputs& in, const std::v
   std::unique_ptr<LodReplay> imgReplay, caseReplay;
   std::unique_ptr<FrozenLod> imgFrozen, caseFrozen;
   if (in.renderer.statefulLod()) {
-    in.renderer.restoreLodState();
-    img.loadLodState(in.renderer.readLodState());
-    img.snapshotLodState();
+    in.renderer.lodState().restore();
+    img.lodState().load(in.renderer.lodState().read());
+    img.lodState().snapshot();
     imgReplay = std::make_unique<LodReplay>(img, in.pose, in.timedLod);
     caseReplay = std::make_unique<LodReplay>(in.renderer, in.pose, in.timedLod);
   }

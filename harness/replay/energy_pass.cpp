@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "camera/camera_path.h"
+#include "render/lod_state.h"
 #include "render/renderer.h"
 #include "vk/energy_counter.h"
 
@@ -133,7 +134,7 @@ EnergyResult energyPass(Renderer& renderer, EnergyCounter& counter, const Timing
   auto draw = [&]() -> int64_t {
     check();
     if (next == frames) next = 0;
-    if (next == 0 && renderer.statefulLod()) renderer.restoreLodState();  // S0, as the timed passes
+    if (next == 0 && renderer.statefulLod()) renderer.lodState().restore();  // S0, as the timed passes
     renderer.submitFrame(next, poses[size_t(next)], poses[size_t(next)]);
     ++next;
     completed += int64_t(renderer.takeCompleted().size());

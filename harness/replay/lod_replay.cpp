@@ -3,18 +3,21 @@
 #include <stdexcept>
 #include <string>
 
+#include "render/lod_state.h"
+#include "render/renderer.h"
 #include "sha256.h"
 
 namespace lb {
 
 ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
-  r.resetLodState();
+  LodState& lod = r.lodState();
+  lod.reset();
   ConvergeResult out;
-  const int limit = int(r.convergeLimit());
+  const int limit = int(lod.gpuLod().convergeLimit);
   uint32_t last = 0;
   int steady = 0;
   while (out.updates < limit) {
-    uint32_t n = r.updateLod(pose);
+    uint32_t n = lod.update(pose);
     ++out.updates;
     steady = out.updates > 1 && n == last ? steady + 1 : 0;
     last = n;
@@ -24,8 +27,8 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
     }
   }
   out.instances = last;
-  std::vector<uint32_t> state = r.readLodState();
-  const GpuLod& g = r.gpuLod();
+  std::vector<uint32_t> state = lod.read();
+  const GpuLod& g = lod.gpuLod();
   if (g.treeWordCount > 0 && size_t(g.treeFirstWord) + g.treeWordCount <= state.size()) {
     state = std::vector<uint32_t>(state.begin() + g.treeFirstWord, state.begin() + g.treeFirstWord + g.treeWordCount);
   } else if (!state.empty()) {
@@ -38,8 +41,8 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
 
 ConvergeResult startLod(Renderer& r, const CameraPose& first, int warmup) {
   ConvergeResult c = convergeLod(r, first);
-  for (int i = 0; i < warmup; ++i) r.updateLod(first);
-  r.snapshotLodState();
+  for (int i = 0; i < warmup; ++i) r.lodState().update(first);
+  r.lodState().snapshot();
   return c;
 }
 
@@ -71,23 +74,23 @@ std::vector<uint32_t> timedInstances(const std::vector<FrameResult>& frames, int
 }
 
 LodReplay::LodReplay(Renderer& r, std::function<CameraPose(int)> pose, std::vector<uint32_t> expected)
-    : r_(r), pose_(std::move(pose)), expected_(std::move(expected)) {
+    : lod_(r.lodState()), pose_(std::move(pose)), expected_(std::move(expected)) {
   restart();
 }
 
 void LodReplay::restart() {
-  r_.restoreLodState();
+  lod_.restore();
   next_ = 0;
 }
 
 void LodReplay::advanceTo(int frame) {
   if (frame < next_ - 1) throw std::logic_error("LodReplay: frame " + std::to_string(frame) + " is behind the replay");
   for (; next_ <= frame; ++next_) {
-    uint32_t n = r_.updateLod(pose_(next_));
-    if (r_.lodOverflow() > 0)  // the timed frame drew the same state: these instances were missing
+    uint32_t n = lod_.update(pose_(next_));
+    if (lod_.overflow() > 0)  // the timed frame drew the same state: these instances were missing
       throw std::runtime_error("LOD state overflow: frame " + std::to_string(next_) + " has " +
-                               std::to_string(r_.lodOverflow()) + " instances beyond the " +
-                               std::to_string(r_.lodCapacity()) + " the renderer holds, left undrawn");
+                               std::to_string(lod_.overflow()) + " instances beyond the " +
+                               std::to_string(lod_.gpuLod().maxInstances) + " the renderer holds, left undrawn");
     if (size_t(next_) < expected_.size() && n != expected_[size_t(next_)])
       throw diverged("the replay's", next_, n, expected_[size_t(next_)]);
   }

@@ -3,8 +3,9 @@
 // measured on the state the timed frames drew. The timed frame f drew S0 updated with the poses of
 // frames 0 ... f, S0 being the converged state after the warm-up (snapshotted, restored before every
 // repetition and timing-mode replay). Measurement, images and matched searches replay those updates
-// alone and draw frozen (Renderer::setLodFrozen) at the frames they look at; a replay whose instance
-// counts differ from the timed frames' fails the case ("LOD replay diverged").
+// alone and draw frozen (LodState::setFrozen) at the frames they look at; a replay whose instance
+// counts differ from the timed frames' fails the case ("LOD replay diverged"). Everything here
+// goes through the renderer's LOD state (render/lod_state.h).
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "camera/camera_path.h"
+#include "render/frame_data.h"
+#include "render/lod_state.h"
 #include "render/renderer.h"
 
 namespace lb {
@@ -28,7 +31,7 @@ struct ConvergeResult {
 constexpr int kSteadyUpdates = 4;
 
 // Resets the state, then updates at `pose` until the instance count is unchanged for kSteadyUpdates
-// updates, at most Renderer::convergeLimit; not converging is recorded, not fatal.
+// updates, at most GpuLod::convergeLimit; not converging is recorded, not fatal.
 ConvergeResult convergeLod(Renderer& r, const CameraPose& pose);
 
 // S0 as a case's timed frames start from it: converged at the path's first pose, then `warmup`
@@ -53,17 +56,22 @@ class LodReplay {
   int next() const { return next_; }  // the first frame not replayed yet
 
  private:
-  Renderer& r_;
+  LodState& lod_;
   std::function<CameraPose(int)> pose_;
   std::vector<uint32_t> expected_;
   int next_ = 0;
 };
 
-// Draws frozen for its lifetime (and unfreezes when a measurement throws).
+// Draws frozen for its lifetime (and unfreezes when a measurement throws); a path without a LOD
+// state has nothing to freeze.
 struct FrozenLod {
-  Renderer& r;
-  explicit FrozenLod(Renderer& renderer) : r(renderer) { r.setLodFrozen(true); }
-  ~FrozenLod() { r.setLodFrozen(false); }
+  LodState* lod;
+  explicit FrozenLod(Renderer& r) : lod(r.hasLodState() ? &r.lodState() : nullptr) {
+    if (lod) lod->setFrozen(true);
+  }
+  ~FrozenLod() {
+    if (lod) lod->setFrozen(false);
+  }
   FrozenLod(const FrozenLod&) = delete;
   FrozenLod& operator=(const FrozenLod&) = delete;
 };

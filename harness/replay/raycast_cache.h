@@ -7,7 +7,7 @@
 
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
-#include "render/renderer.h"
+#include "render/frame_data.h"
 #include "replay/surplus.h"
 
 namespace lb {

@@ -10,6 +10,8 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
+#include "render/lod_state.h"
+#include "render/renderer.h"
 #include "replay/case_images.h"
 #include "replay/energy_pass.h"
 #include "replay/lod_replay.h"
@@ -40,10 +42,6 @@ RenderMode parseRenderMode(const std::string& name) {
   if (name == "heatmap") return RenderMode::Heatmap;
   if (name == "wireframe") return RenderMode::Wireframe;
   throw InputError("unknown render mode '" + name + "' (shaded, heatmap, wireframe)");
-}
-
-const char* renderModeName(RenderMode m) {
-  return m == RenderMode::Heatmap ? "heatmap" : m == RenderMode::Wireframe ? "wireframe" : "shaded";
 }
 
 static double secondsSince(std::chrono::steady_clock::time_point t0) {
@@ -147,7 +145,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   const bool stateful = renderer.statefulLod();
   if (stateful) {
     ConvergeResult converged = convergeLod(renderer, pose(0));
-    result.lodState = lodStateJson(converged, renderer.gpuLodFacts());
+    result.lodState = lodStateJson(converged, renderer.lodState().gpuLod().facts);
   }
 
   if (progress) progress->phase(Phase::Timing);
@@ -163,12 +161,12 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   for (int i = 0; i < config.warmupFrames; ++i) renderer.submitFrame(-1, pose(0), pose(0));
   renderer.finish();
   renderer.takeCompleted();
-  if (stateful) renderer.snapshotLodState();
+  if (stateful) renderer.lodState().snapshot();
 
   int total = frames * config.repetitions;
   for (int rep = 0; rep < config.repetitions; ++rep)
     for (int f = 0; f < frames; ++f) {
-      if (stateful && f == 0) renderer.restoreLodState();
+      if (stateful && f == 0) renderer.lodState().restore();
       if (gStop) throw Interrupted();
       if (config.caseTimeoutS > 0 && secondsSince(t0) > config.caseTimeoutS)
         throw std::runtime_error("timeout: the case ran longer than " + std::to_string(config.caseTimeoutS) + " s");

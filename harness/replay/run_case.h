@@ -7,7 +7,7 @@
 #include <string>
 
 #include "config/config.h"
-#include "render/renderer.h"
+#include "render/frame_data.h"
 #include "replay/case_progress.h"
 #include "replay/raycast_cache.h"
 #include "results/write.h"
@@ -34,6 +34,5 @@ void clearStageCosts();
 nlohmann::json stageCostsJson();
 
 RenderMode parseRenderMode(const std::string& name);
-const char* renderModeName(RenderMode m);
 
 }  // namespace lb

@@ -9,6 +9,7 @@
 
 #include "camera/camera_path.h"
 #include "error.h"
+#include "render/lod_state.h"
 #include "schemes/registry.h"
 #include "stats.h"
 #include "vk/context.h"
@@ -30,7 +31,7 @@ std::vector<FrameResult> replayInMode(Renderer& renderer, RenderMode mode, int f
   std::vector<FrameResult> out;
   for (int rep = 0; rep < repetitions; ++rep)
     for (int f = 0; f < frames; ++f) {
-      if (f == 0 && renderer.statefulLod()) renderer.restoreLodState();  // S0, as the shaded pass
+      if (f == 0 && renderer.statefulLod()) renderer.lodState().restore();  // S0, as the shaded pass
       CameraPose p = pose(f);
       renderer.submitFrame(f, p, p, mode);
       for (auto& r : renderer.takeCompleted()) out.push_back(r);

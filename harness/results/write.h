@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "metrics/frame_metrics.h"
-#include "render/renderer.h"
+#include "render/frame_data.h"
+#include "render/scheme.h"
 #include "terrain/heightfield.h"
 
 namespace lb {

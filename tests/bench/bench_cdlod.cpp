@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bench.h"
+#include "camera/camera_matrices.h"
 #include "render/instanced.h"
 #include "render/renderer.h"
 #include "render/scheme.h"
