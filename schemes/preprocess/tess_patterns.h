@@ -18,8 +18,9 @@
 // - The interior is the grid (a/m0, b/m1), 0 < a < m0, 0 < b < m1, and an inner factor of 1 counts
 //   as 2 unless all six factors are 1: the tessellator does the same ("1 + epsilon"), so a pattern
 //   has its vertex set and therefore its counts, V = sum(outer) + (m0-1)(m1-1) vertices and
-//   T = sum(outer) + 2(m0-1)(m1-1) - 2 triangles (a triangulated disc: T = 2 V_inside + V_border
-//   - 2). It also leaves every edge an interior point to stitch to, so no triangle lies on an edge.
+//   T = sum(outer) + 2(m0-1)(m1-1) - 2 triangles (a triangulated disc with B border and I inner
+//   vertices has B + 2I - 2 triangles, whatever its connectivity). It also leaves every edge an
+//   interior point to stitch to, so no triangle lies on an edge.
 // - Connectivity: the grid cells inside the first ring, two triangles each, and four strips, each
 //   stitching an edge's segments to the first ring's side by merging the two rows' segment
 //   midpoints. Strips between parallel rows cannot fold, whatever the factors.
