@@ -7,6 +7,8 @@
 #include <cstring>
 #include <string>
 
+#include "random.h"
+#include "render/patch_grid.h"
 #include "schemes/preprocess/density_map.h"
 #include "schemes/preprocess/plane_fit.h"
 #include "schemes/preprocess/tess_deviation.h"
@@ -82,6 +84,35 @@ TEST(TerrainThreads, EveryPassIsBitIdenticalOnOneAndManyThreads) {
               0);
     EXPECT_TRUE(sameBytes(one.dev.dev, many.dev.dev)) << threads << " threads: deviation table";
   }
+}
+
+// Patch height bounds run patch rows in parallel on large terrains: every thread count gives what
+// a plain scan of each patch's texels (widened by one) gives.
+TEST(TerrainThreads, PatchHeightBoundsEqualAPlainScanOnAnyThreadCount) {
+  Heightfield hf;
+  hf.width = hf.height = 2049;  // 2049 x 8 rows a patch row at n = 256: bands of 63 rows, 4+ bands
+  hf.extent = 1000;
+  hf.h.resize(size_t(hf.width) * size_t(hf.height));
+  SplitMix64 random{11};
+  for (float& v : hf.h) v = float(random.below(100000)) * 0.01f;
+  for (int n : {1, 7, 256})
+    for (Topology topo : {Topology::Quad4, Topology::Tri3}) {
+      std::vector<glm::vec2> plain;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const int x0 = i * 2048 / n, x1 = ((i + 1) * 2048 + n - 1) / n;
+          const int z0 = j * 2048 / n, z1 = ((j + 1) * 2048 + n - 1) / n;
+          glm::vec2 b(INFINITY, -INFINITY);
+          for (int z = z0; z <= z1; ++z)
+            for (int x = x0; x <= x1; ++x) b = glm::vec2(std::min(b.x, hf.at(x, z)), std::max(b.y, hf.at(x, z)));
+          plain.push_back(b);
+          if (topo == Topology::Tri3) plain.push_back(b);
+        }
+      for (int threads : {1, 3, 8}) {
+        ThreadsEnv env(threads);
+        EXPECT_TRUE(sameBytes(plain, patchHeightBounds(hf, n, topo))) << "n " << n << ", " << threads << " threads";
+      }
+    }
 }
 
 TEST(TerrainThreads, ParallelRowsCoversEveryRowOnce) {

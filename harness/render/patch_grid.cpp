@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 
@@ -47,25 +48,37 @@ std::vector<uint32_t> patchIndices(int n, Topology topology) {
 }
 
 std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology topology) {
-  std::vector<glm::vec2> out;
-  out.reserve(patchCountFor(n, topology));
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      // Texel range covering the patch, widened by one so bilinear neighbours are included.
-      int x0 = int(std::floor(float(i) / float(n) * float(hf.width - 1)));
-      int x1 = int(std::ceil(float(i + 1) / float(n) * float(hf.width - 1)));
-      int z0 = int(std::floor(float(j) / float(n) * float(hf.height - 1)));
-      int z1 = int(std::ceil(float(j + 1) / float(n) * float(hf.height - 1)));
-      float lo = INFINITY, hi = -INFINITY;
-      for (int z = z0; z <= z1; ++z)
-        for (int x = x0; x <= x1; ++x) {
-          float h = hf.at(x, z);
-          lo = std::min(lo, h);
-          hi = std::max(hi, h);
-        }
-      out.emplace_back(lo, hi);
-      if (topology == Topology::Tri3) out.emplace_back(lo, hi);
-    }
+  // Every patch renderer computes these (a tuned search builds dozens), and at 16385^2 a
+  // single-threaded scan of every sample took about a second: patch rows run in parallel, each
+  // writing only its own entries, so the result does not depend on the thread count.
+  const int perPatch = topology == Topology::Tri3 ? 2 : 1;
+  std::vector<glm::vec2> out(size_t(n) * size_t(n) * size_t(perPatch));
+  // Bands of at least 1M samples: small terrains (the tests') stay on one thread.
+  const long long samplesPerRow = (long long)hf.width * std::max(1, hf.height / std::max(1, n));
+  const int rowsPerBand = int(std::max(1LL, (1LL << 20) / std::max(1LL, samplesPerRow)));
+  parallelRows(
+      n,
+      [&](int j0, int j1) {
+        for (int j = j0; j < j1; ++j)
+          for (int i = 0; i < n; ++i) {
+            // Texel range covering the patch, widened by one so bilinear neighbours are included.
+            const int x0 = int(std::floor(float(i) / float(n) * float(hf.width - 1)));
+            const int x1 = std::min(hf.width - 1, int(std::ceil(float(i + 1) / float(n) * float(hf.width - 1))));
+            const int z0 = int(std::floor(float(j) / float(n) * float(hf.height - 1)));
+            const int z1 = std::min(hf.height - 1, int(std::ceil(float(j + 1) / float(n) * float(hf.height - 1))));
+            float lo = INFINITY, hi = -INFINITY;
+            for (int z = z0; z <= z1; ++z) {
+              const float* row = hf.h.data() + size_t(z) * size_t(hf.width);
+              for (int x = x0; x <= x1; ++x) {
+                lo = std::min(lo, row[x]);
+                hi = std::max(hi, row[x]);
+              }
+            }
+            const size_t k = (size_t(j) * size_t(n) + size_t(i)) * size_t(perPatch);
+            for (int p = 0; p < perPatch; ++p) out[k + size_t(p)] = glm::vec2(lo, hi);
+          }
+      },
+      rowsPerBand);
   return out;
 }
 
