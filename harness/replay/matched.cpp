@@ -1,5 +1,6 @@
 #include "replay/matched.h"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -16,8 +17,13 @@
 
 namespace lb {
 
-MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
-                           const CameraPath& path, const Config& config, const Case& c) {
+namespace {
+
+// The search of matchParameter on a renderer of the case's size and grid, which the tuned search
+// then times at the value found: one renderer per configuration, not two (each uploads the
+// terrain and its normal map, seconds at 16385^2).
+MatchResult matchOn(Renderer& r, Context& ctx, const Scheme& scheme, const ParamValues& base,
+                    const Heightfield& terrain, const CameraPath& path, const Config& config, const Case& c) {
   const MatchSpec& spec = config.match;
   MatchResult out;
   out.param = scheme.info().mainParam;
@@ -27,7 +33,6 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
     if (p.name == out.param) ps = &p;
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
-  Renderer r(ctx, terrain, {c.width, c.height, c.grid});
   // On the GPU path (replay/measure_gpu.h) each trial's error map is reduced on the device.
   std::unique_ptr<GpuReduce> reduce;
   Buffer errorMap;
@@ -167,15 +172,12 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
   return out;
 }
 
-namespace {
-
 // Mean GPU ms of the match's evaluation frames, each drawn once after a short warm-up, at `params`
 // on a `grid` of patches; a stateful LOD walks its history to each frame as the search does.
-double trialCost(Context& ctx, const Scheme& scheme, const ParamValues& params, const Heightfield& terrain,
-                 const CameraPath& path, const Config& config, int width, int height, int grid) {
+double trialCost(Renderer& r, const Scheme& scheme, const ParamValues& params, const Heightfield& terrain,
+                 const CameraPath& path, const Config& config) {
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
-  Renderer r(ctx, terrain, {width, height, grid});
   r.setScheme(scheme, params);
   auto poseAt = [&](int f) { return samplePose(path, config.fps, f, terrain); };
   std::unique_ptr<LodReplay> replay;
@@ -201,6 +203,13 @@ double trialCost(Context& ctx, const Scheme& scheme, const ParamValues& params, 
 }
 
 }  // namespace
+
+MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
+                           const CameraPath& path, const Config& config, const Case& c) {
+  if (scheme.info().mainParam.empty()) return {};
+  Renderer r(ctx, terrain, {c.width, c.height, c.grid});
+  return matchOn(r, ctx, scheme, base, terrain, path, config, c);
+}
 
 TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                         const CameraPath& path, const Config& config, const Case& c) {
@@ -233,10 +242,12 @@ TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& b
       else
         pv[k] = v;
     }
+    const auto t0 = std::chrono::steady_clock::now();
     try {
-      t.match = matchParameter(ctx, scheme, pv, terrain, path, each, cc);
+      Renderer r(ctx, terrain, {cc.width, cc.height, cc.grid});
+      if (!scheme.info().mainParam.empty()) t.match = matchOn(r, ctx, scheme, pv, terrain, path, each, cc);
       if (!t.match.param.empty()) pv[t.match.param] = t.match.value;
-      t.costMs = trialCost(ctx, scheme, pv, terrain, path, each, cc.width, cc.height, cc.grid);
+      t.costMs = trialCost(r, scheme, pv, terrain, path, each);
     } catch (const Interrupted&) {
       throw;
     } catch (const std::logic_error&) {
@@ -246,6 +257,7 @@ TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& b
       t.match.reachable = false;
       t.match.trials.push_back({0, std::nan(""), e.what()});
     }
+    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.evaluations += int(t.match.trials.size());
     out.trials.push_back(t);
   }

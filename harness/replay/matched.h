@@ -45,6 +45,7 @@ struct TuneTrial {
   std::map<std::string, double> settings;
   MatchResult match;
   double costMs = 0;
+  double seconds = 0;  // wall time of its search and timing, renderer set-up included
 };
 
 struct TuneResult {
@@ -57,7 +58,7 @@ struct TuneResult {
   int budget = 0;
 };
 
-// The tuned search (issue: each scheme at its best configuration): for every configuration of the
+// The tuned search (each scheme at its best configuration): for every configuration of the
 // case's tuning space (Case::tune: the cartesian product of its settings), the main parameter's
 // matched search with min(iterations, max(2, budget / K - 2)) steps, then the mean GPU ms of the
 // match's frames at the value found. The cheapest configuration that reaches the target wins; if

@@ -123,7 +123,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     for (const TuneTrial& tr : t.trials)
       trials.push_back({{"settings", tr.settings},
                         {"match", matchJson(config, tr.match)},
-                        {"cost_ms", std::isnan(tr.costMs) ? json() : json(tr.costMs)}});
+                        {"cost_ms", std::isnan(tr.costMs) ? json() : json(tr.costMs)},
+                        {"seconds", tr.seconds}});
     result.matched["tuned"] = {{"space", c.tune},
                                {"chosen", t.trials[size_t(t.chosen)].settings},
                                {"budget", t.budget},
