@@ -2,7 +2,7 @@
 # The workload suite (configs/suite/README.md) in one command: every view over your own DEM, or
 # over the suite's terrains, then its verdict and report.
 # Usage: scripts/run-suite.sh [DEM] [--config FILE] [--device NAME] [--out DIR] [--extent M]
-#                             [--height-scale S] [--keep-terrains] [--largest auto|off|N]
+#                             [--height-scale S] [--keep-terrains] [--largest auto|off|N] [--target PX]
 #                             [--dry-run] [--no-report] [-- extra `run` args]
 #   DEM              any raster GDAL reads (GeoTIFF, COG, ...; terrain type gdal, the extent from its
 #                    georeferencing unless --extent), or an SRTM .hgt (type hgt: 1201^2 and 3601^2
@@ -19,13 +19,16 @@
 #                    (default) sets it to the largest square terrain the device takes (`lodbench
 #                    devices`) at the same spacing and relief; N sets it to N; off keeps the config's.
 #                    Generated terrains larger than it are left out (the run would refuse them).
+#   --target         the matched target in the config's metric (p95 px in the suite's configs;
+#                    default the config's 1): the suite's verdict at 0.5 and 2 px is two more runs,
+#                    written to <out>-target<PX> by default
 # Env: LODBENCH (binary, default build/lodbench). Needs python3 (writes the config).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 bin=${LODBENCH:-build/lodbench}
 dem="" config=configs/suite/gpu.json device="" out="" extent="" heightScale=1 keep=0 largest=auto
-dryRun=0 report=1
+dryRun=0 report=1 target=""
 extra=()
 [[ $# -gt 0 && $1 != -* ]] && { dem=$1; shift; }
 while [[ $# -gt 0 ]]; do
@@ -37,10 +40,11 @@ while [[ $# -gt 0 ]]; do
     --height-scale) heightScale=$2; shift 2 ;;
     --keep-terrains) keep=1; shift ;;
     --largest) largest=$2; shift 2 ;;
+    --target) target=$2; shift 2 ;;
     --dry-run) dryRun=1; shift ;;
     --no-report) report=0; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run-suite: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -51,6 +55,7 @@ command -v python3 >/dev/null || { echo "run-suite: needs python3 to write the c
 if [[ -z $out ]]; then
   name=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["name"])' "$config")
   [[ -n $dem ]] && name+=-$(basename "${dem%.*}")
+  [[ -n $target ]] && name+=-target$target
   out=results/suite/$name
 fi
 mkdir -p "$out"
@@ -58,10 +63,10 @@ devices=""
 [[ $largest == auto ]] && devices=$("$bin" devices 2>&1 || true)
 
 python3 - "$config" "$out/config.json" "$root" "$dem" "$extent" "$heightScale" "$keep" "$largest" "$device" \
-  "$devices" <<'EOF'
+  "$devices" "$target" <<'EOF'
 import json, os, re, sys
 
-config, written, root, dem, extent, height_scale, keep, largest, device, devices = sys.argv[1:]
+config, written, root, dem, extent, height_scale, keep, largest, device, devices, target = sys.argv[1:]
 base = os.path.dirname(os.path.abspath(config))
 c = json.load(open(config))
 terrains = c.pop("terrains", None) or [c.pop("terrain", {"type": "procedural"})]
@@ -141,6 +146,16 @@ if largest != "off" and any(generated(t) for t in terrains):
             seen.add(key)
     terrains = kept
 c["terrains"] = terrains
+if target:
+    if "match" not in c:
+        fail(f"--target: {config} has no \"match\" section to set the target of")
+    try:
+        c["match"]["value"] = float(target)
+    except ValueError:
+        fail(f"--target '{target}': expected a number (pixels of the config's metric)")
+    if c["match"]["value"] <= 0:
+        fail(f"--target '{target}': must be above 0")
+    c["name"] = c.get("name", "suite") + "-target" + target
 c["description"] = c.get("description", "") + f" Written by scripts/run-suite.sh from {config}."
 with open(written, "w") as f:
     json.dump(c, f, indent=2)

@@ -276,6 +276,19 @@ TEST(Suite, RunSuiteScriptWritesAConfigForADem) {
                                                "/mini.json --out " + out + "/bad --dry-run");
   EXPECT_EQ(bad.code, 2) << bad.text;
   EXPECT_NE(bad.text.find("give its --extent"), std::string::npos) << bad.text;
+
+  // The verdict at another target: the same suite with the match's value set, under its own name.
+  const lb::test::CliOut half = lb::test::shell(
+      script + "--config " + kSuite + "/mini.json --largest off --target 0.5 --out " + out + "/half --dry-run");
+  ASSERT_EQ(half.code, 0) << half.text;
+  const json h = lb::test::readJson(out + "/half/config.json");
+  EXPECT_EQ(h["match"]["value"], 0.5);
+  EXPECT_EQ(h["name"], "suite-mini-target0.5");
+  EXPECT_NE(half.text.find("_match-err_p95_px0.5_tuned"), std::string::npos) << half.text;
+  const lb::test::CliOut notANumber =
+      lb::test::shell(script + "--config " + kSuite + "/mini.json --target px --out " + out + "/nan --dry-run");
+  EXPECT_EQ(notANumber.code, 2) << notANumber.text;
+  EXPECT_NE(notANumber.text.find("--target 'px': expected a number"), std::string::npos) << notANumber.text;
 }
 
 }  // namespace
