@@ -94,6 +94,22 @@ TEST(SuiteVerdict, AnExactCopyTiesAndADoubledCostLoses) {
   }
 }
 
+// A 1.5 % difference with 0.1 % clock noise: a sure win without a margin, a tie within a 2 %
+// margin, and still a win within a 1 % one.
+TEST(SuiteVerdict, AMarginOfPracticalSignificanceTurnsSmallWinsIntoTies) {
+  SplitMix64 rng{3};
+  SchemeTimings a = timings("a", 1.0, 3, 100, 0.001, 0.01, rng);
+  SchemeTimings b = timings("b", 1.015, 3, 100, 0.001, 0.01, rng);
+  EXPECT_TRUE(suiteVerdict({{"w", {a, b}}}).workloads[0].verdict());
+  EXPECT_GT(suiteVerdict({{"w", {a, b}}}).workloads[0].ratio.at("b").lo, 1.0);
+  const SuiteVerdict within2 = suiteVerdict({{"w", {a, b}}}, 0.95, 0.02);
+  EXPECT_FALSE(within2.workloads[0].verdict());
+  EXPECT_EQ(within2.workloads[0].tied.size(), 2u);
+  EXPECT_EQ(verdictJson(within2)["margin"], 0.02);
+  EXPECT_EQ(verdictJson(within2)["workloads"][0]["verdict"], "no verdict");
+  EXPECT_TRUE(suiteVerdict({{"w", {a, b}}}, 0.95, 0.01).workloads[0].verdict());
+}
+
 TEST(SuiteVerdict, GeometricMeanOverWorkloadsWinsAndMissingSchemes) {
   SplitMix64 rng{11};
   // A wins the first workload by 2x, B the second by 4x; C runs only the first, at 3x.

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "camera/camera_path.h"
@@ -380,6 +381,12 @@ int main(int argc, char** argv) {
   verdict->add_option("--confidence", verdictConfidence, "Interval confidence")
       ->capture_default_str()
       ->check(finite(0.5, 0.999));
+  double verdictMargin = 0;
+  verdict
+      ->add_option("--margin", verdictMargin,
+                   "Practical significance: a scheme within this fraction of the cheapest (its interval's lower "
+                   "bound at most 1 + margin) ties it; 0.02 reads 'within 2 % is a tie'")
+      ->check(finite(0.0, 1.0));
   auto* gbench = app.add_subcommand("gbench", "Write <run-dir>/gbench.json in Google Benchmark's JSON schema");
   std::string gbenchDir;
   gbench->add_option("run-dir", gbenchDir, "Run directory")->required();
@@ -465,7 +472,7 @@ int main(int argc, char** argv) {
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);
     if (*compare) return compareCommand(baselineDir, candidateDirs, co, vf);
-    if (*verdict) return verdictCommand(verdictDirs, verdictConfidence);
+    if (*verdict) return verdictCommand(verdictDirs, verdictConfidence, verdictMargin);
     if (*ab) return abCommand(abo, co, vf);
     if (*probe) return probeCommand(po);
     if (*loadBench) return loadBenchCommand(lbo);
@@ -484,8 +491,19 @@ int main(int argc, char** argv) {
     if (*report) {
       rep.html = !noHtml;
       // The report opens with the run's verdict (compare/suite_verdict.h), written beside it first.
+      // A verdict already there keeps the confidence and margin it was asked with.
       if (std::filesystem::exists(std::filesystem::path(rep.runDir) / "run.json")) try {
-          writeVerdict(rep.runDir, 0.95);
+          double confidence = 0.95, margin = 0;
+          const std::filesystem::path earlier = std::filesystem::path(rep.runDir) / "verdict.json";
+          if (std::filesystem::exists(earlier)) {
+            std::ifstream in(earlier);
+            const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+            if (j.is_object()) {
+              confidence = j.value("confidence", confidence);
+              margin = j.value("margin", margin);
+            }
+          }
+          writeVerdict(rep.runDir, confidence, margin);
         } catch (const std::exception& e) {
           std::fprintf(stderr, "lodbench: note: no verdict.json: %s\n", e.what());
         }

@@ -79,9 +79,10 @@ size_t checkFrames(const Workload& w) {
 
 }  // namespace
 
-SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confidence) {
+SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confidence, double margin) {
   SuiteVerdict v;
   v.confidence = confidence;
+  v.margin = margin;
   std::map<std::string, SchemeResult> schemes;
   std::map<std::string, std::vector<std::pair<LogStats, LogStats>>> pieces;  // scheme -> (its, cheapest's)
   std::vector<std::string> order;
@@ -117,7 +118,7 @@ SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confide
         res.ratio[s.scheme] = d.at(confidence);
       }
       const Interval& r = res.ratio[s.scheme];
-      if (s.scheme == res.cheapest || std::isnan(r.lo) || r.lo <= 1.0) res.tied.push_back(s.scheme);
+      if (s.scheme == res.cheapest || std::isnan(r.lo) || r.lo <= 1.0 + margin) res.tied.push_back(s.scheme);
       pieces[s.scheme].push_back({mine, best});
       ++schemes[s.scheme].workloads;
     }
@@ -157,11 +158,12 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
     return json{{"value", i.value}, {"lo", i.lo}, {"hi", i.hi}};
   };
   json out = {{"confidence", v.confidence},
+              {"margin", v.margin},
               {"method",
                "cost = geometric mean over repetitions of each repetition's mean GPU ms; ratio to the workload's "
                "cheapest with Welch's t interval on the logs of the repetition means; across workloads the "
                "geometric mean of the ratios with a Welch-Satterthwaite t interval; overlapping intervals are a "
-               "tie, never a win"}};
+               "tie, never a win; with a margin m, an interval whose lower bound is at most 1 + m ties too"}};
   json ws = json::array();
   for (const WorkloadResult& w : v.workloads) {
     json r = json::object();
@@ -260,9 +262,9 @@ std::vector<Workload> runWorkloads(const RunData& run) {
   return out;
 }
 
-SuiteVerdict writeVerdict(const std::string& dir, double confidence) {
+SuiteVerdict writeVerdict(const std::string& dir, double confidence, double margin) {
   RunData run = loadRun(dir);
-  SuiteVerdict v = suiteVerdict(runWorkloads(run), confidence);
+  SuiteVerdict v = suiteVerdict(runWorkloads(run), confidence, margin);
   nlohmann::json j = verdictJson(v);
   j["run_dir"] = dir;
   j["context"] = {{"device", run.context.value("device", "")}, {"driver", run.context.value("driver", "")}};
@@ -270,9 +272,9 @@ SuiteVerdict writeVerdict(const std::string& dir, double confidence) {
   return v;
 }
 
-int verdictCommand(const std::vector<std::string>& runDirs, double confidence) {
+int verdictCommand(const std::vector<std::string>& runDirs, double confidence, double margin) {
   for (const std::string& dir : runDirs) {
-    SuiteVerdict v = writeVerdict(dir, confidence);
+    SuiteVerdict v = writeVerdict(dir, confidence, margin);
     std::printf("%s\n", (std::filesystem::path(dir) / "verdict.json").string().c_str());
     std::printf("| scheme | geometric-mean ratio [%g %% interval] | workloads | wins | ties | missing |\n",
                 100 * confidence);
@@ -286,9 +288,11 @@ int verdictCommand(const std::vector<std::string>& runDirs, double confidence) {
                   s.missingIn.size());
     }
     for (const WorkloadResult& w : v.workloads) {
-      std::string what = w.cheapest.empty() ? "no scheme ran"
-                         : w.verdict()      ? w.cheapest + " cheapest, every other interval above 1"
-                                            : "no verdict: " + std::to_string(w.tied.size()) + " schemes tie";
+      std::string what =
+          w.cheapest.empty() ? "no scheme ran"
+          : w.verdict()      ? w.cheapest + " cheapest, every other interval above 1"
+                             : "no verdict: " + std::to_string(w.tied.size()) + " schemes tie" +
+                              (margin > 0 ? " (within the margin " + std::to_string(margin).substr(0, 5) + ")" : "");
       if (!w.noInterval.empty())
         what += " (" + std::to_string(w.noInterval.size()) + " with fewer than 2 repetitions: no interval)";
       std::printf("%s: %s\n", w.id.c_str(), what.c_str());

@@ -13,6 +13,11 @@
 // workloads, a scheme's geometric-mean ratio is exp of the mean of its log ratios, with a t
 // interval whose variance sums the workloads' (independent runs) and whose degrees of freedom
 // follow Welch-Satterthwaite. One repetition gives no interval: then nothing wins.
+//
+// Practical significance: a margin m (`lodbench verdict --margin`, default 0) makes a scheme tie
+// the cheapest while its interval's lower bound is at most 1 + m, so a win needs every other
+// scheme to be surely more than m slower. Repetitions on a GPU agree to 0.1 %, so without a margin
+// a 1 % difference is a win; whether 1 % matters is the reader's call, and the margin states it.
 #include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -64,13 +69,14 @@ struct SchemeResult {
 
 struct SuiteVerdict {
   double confidence = 0.95;
+  double margin = 0;  // practical significance: ties within 1 + margin
   std::vector<WorkloadResult> workloads;
   std::vector<SchemeResult> schemes;  // by geometric-mean ratio, lowest first
 };
 
 // Throws std::invalid_argument when a scheme's repetitions differ in length or a workload's
 // schemes have different frame counts.
-SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confidence = 0.95);
+SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confidence = 0.95, double margin = 0);
 
 // verdict.json's content (docs/results-format.md).
 nlohmann::json verdictJson(const SuiteVerdict& v);
@@ -86,10 +92,10 @@ struct RunData;
 std::vector<Workload> runWorkloads(const RunData& run);
 
 // Writes RUN-DIR/verdict.json and returns the verdict (InputError for a directory that is not a run).
-SuiteVerdict writeVerdict(const std::string& runDir, double confidence);
+SuiteVerdict writeVerdict(const std::string& runDir, double confidence, double margin = 0);
 
 // `lodbench verdict RUN-DIR...`: writes RUN-DIR/verdict.json for each run and prints its table;
 // returns 0, or throws InputError for a directory that is not a run.
-int verdictCommand(const std::vector<std::string>& runDirs, double confidence);
+int verdictCommand(const std::vector<std::string>& runDirs, double confidence, double margin = 0);
 
 }  // namespace lb

@@ -146,7 +146,12 @@ void verdictPart(Writer& w, const ReportRun& run) {
       formatValue(100 * conf) +
       " % interval, and the workloads it wins (cheapest, every other interval above 1) or ties (intervals "
       "overlapping: no verdict). Method: " +
-      v.value("method", std::string("")) + ".");
+      v.value("method", std::string("")) + "." +
+      (v.value("margin", 0.0) > 0 ? " Margin of practical significance: " + formatValue(100 * v.value("margin", 0.0)) +
+                                        " % (a scheme whose interval reaches within it of the cheapest ties)."
+                                  : std::string(" No margin of practical significance: a difference that the "
+                                                "intervals separate wins, however small (`lodbench verdict "
+                                                "--margin` states one).")));
   Table t;
   t.header = {"scheme", "geometric-mean ratio", "interval", "workloads", "wins", "ties", "missing in"};
   t.numeric = {false, true, false, true, true, true, true};
