@@ -19,6 +19,8 @@
 #include "render/instanced.h"
 #include "render/renderer.h"
 #include "render/scheme.h"
+#include "schemes/preprocess/min_max_pyramid.h"
+#include "schemes/preprocess/node_errors.h"
 #include "schemes/preprocess/tess_deviation.h"
 #include "shaders/cdlod_params.h"
 #include "shaders/shared.h"
@@ -550,3 +552,38 @@ TEST(SchemeCdlod, RandomPosesKeepTheRules) {
 }
 
 }  // namespace
+
+// cdlod-sse's node errors read node sizes that are multiples of 16 cells from one table of
+// 16-cell blocks (schemes/preprocess/node_errors.cpp): every node's error equals the largest
+// deviation of its cells' two triangles, scanned here cell by cell, for each node size and
+// lattice, whatever order the sizes are asked in (a larger size first leaves the smaller one's
+// higher levels to be added).
+TEST(SchemeCdlodSse, NodeErrorsEqualACellByCellScanForEveryNodeSize) {
+  TerrainSpec spec;
+  spec.size = 97;  // 96 cells: blocks of 16, 32 and 64 do not all divide the lattice
+  spec.seed = 9;
+  spec.extent = 500;
+  spec.heightScale = 80;
+  const Heightfield hf = makeProcedural(spec);
+  for (double q : {1.0, 2.0})
+    for (int base : {64, 16, 32, 8, 48}) {
+      const MinMaxPyramid pyr = buildMinMaxPyramid(hf, q, base, 1, glm::dvec2(spec.extent / (96 * q)));
+      const NodeErrors e = computeNodeErrors(hf, pyr, q);
+      ASSERT_EQ(e.dev.size(), pyr.nx.size());
+      for (int p = 0; p <= pyr.top(); ++p) {
+        const double s = std::ldexp(1.0, p);
+        const int cols = int(std::ceil(pyr.cellsX / s)), rows = int(std::ceil(pyr.cellsZ / s));
+        std::vector<float> want(size_t(pyr.nx[size_t(p)]) * size_t(pyr.nz[size_t(p)]), 0.0f);
+        for (int r = 0; r < rows; ++r)
+          for (int c = 0; c < cols; ++c) {
+            const double x0 = c * s / q, x1 = std::min((c + 1) * s, pyr.cellsX) / q;
+            const double z0 = r * s / q, z1 = std::min((r + 1) * s, pyr.cellsZ) / q;
+            const glm::dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
+            float& m = want[pyr.index(p, c / base, r / base)];
+            m = std::max(m,
+                         float(std::max(triangleDeviation(hf, v00, v10, v11), triangleDeviation(hf, v00, v11, v01))));
+          }
+        EXPECT_EQ(e.dev[size_t(p)], want) << "q " << q << ", node size " << base << ", level " << p;
+      }
+    }
+}
