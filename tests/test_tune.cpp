@@ -10,6 +10,7 @@
 
 #include "config/config.h"
 #include "error.h"
+#include "replay/matched.h"
 #include "sweep/runner.h"
 
 using namespace lb;
@@ -127,4 +128,40 @@ TEST(Tune, TuneFieldErrorsNameTheField) {
     EXPECT_NE(k.id.find("_tuned"), std::string::npos);
     EXPECT_TRUE(k.inputs.contains("tune"));
   }
+}
+
+// The choice among a tuned search's configurations, as sphere's met it on the SRTM tile's ground
+// view on the H100: grid 16 misses 1 px even at its finest (1.365 px), grids 64 and 256 are more
+// accurate than 1 px even at their coarsest (0.618 and 0.356 px). Grid 64 meets the target and is
+// the cheapest that does; choosing by closeness alone picked grid 16, which misses it.
+TEST(Tune, AConfigurationTooAccurateAtItsCoarsestMeetsTheTarget) {
+  MatchSpec spec;
+  spec.metric = "err_p95_px";
+  spec.value = 1;
+  auto trial = [](int grid, double achieved, double ms) {
+    TuneTrial t;
+    t.settings = {{"grid", grid}};
+    t.match.param = "tri_size";
+    t.match.reachable = false;
+    t.match.achieved = achieved;
+    t.costMs = ms;
+    return t;
+  };
+  std::vector<TuneTrial> trials = {trial(16, 1.365, 0.827), trial(64, 0.618, 0.528), trial(256, 0.356, 0.741)};
+  EXPECT_FALSE(meetsTarget(trials[0].match, spec));
+  EXPECT_TRUE(meetsTarget(trials[1].match, spec));
+  EXPECT_EQ(chooseConfiguration(trials, spec), 1);
+  // A configuration that reaches the target exactly competes on cost with the over-accurate ones.
+  trials.push_back(trial(32, 1.0, 0.5));
+  trials.back().match.reachable = true;
+  EXPECT_EQ(chooseConfiguration(trials, spec), 3);
+  // None meets it: the closest (and an untimed configuration is never chosen).
+  std::vector<TuneTrial> coarse = {trial(16, 1.4, 0.5), trial(64, 1.2, 0.9), trial(256, 1.1, NAN)};
+  EXPECT_EQ(chooseConfiguration(coarse, spec), 1);
+  // A triangle budget is matched, not bounded: fewer triangles at the coarsest does not meet it.
+  MatchSpec budget;
+  budget.metric = "triangles";
+  budget.value = 1000;
+  EXPECT_FALSE(meetsTarget(trial(16, 500, 1).match, budget));
+  EXPECT_EQ(chooseConfiguration({}, spec), -1);
 }

@@ -211,6 +211,34 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
   return matchOn(r, ctx, scheme, base, terrain, path, config, c);
 }
 
+bool meetsTarget(const MatchResult& m, const MatchSpec& spec) {
+  if (m.reachable) return true;
+  // Past the target on the accurate side even at the coarsest setting: it meets an error target
+  // (its cost an upper bound). A triangle count is a budget to equal, not a bound to stay under.
+  return spec.metric != "triangles" && !std::isnan(m.achieved) && m.achieved <= spec.value;
+}
+
+int chooseConfiguration(const std::vector<TuneTrial>& trials, const MatchSpec& spec) {
+  int chosen = -1;
+  for (int i = 0; i < int(trials.size()); ++i) {
+    const TuneTrial& t = trials[size_t(i)];
+    if (std::isnan(t.costMs)) continue;
+    if (chosen < 0) {
+      chosen = i;
+      continue;
+    }
+    const TuneTrial& b = trials[size_t(chosen)];
+    const bool tMeets = meetsTarget(t.match, spec), bMeets = meetsTarget(b.match, spec);
+    if (tMeets != bMeets) {
+      if (tMeets) chosen = i;
+    } else if (tMeets ? t.costMs < b.costMs
+                      : std::abs(t.match.achieved - spec.value) < std::abs(b.match.achieved - spec.value)) {
+      chosen = i;
+    }
+  }
+  return chosen;
+}
+
 TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                         const CameraPath& path, const Config& config, const Case& c) {
   TuneResult out;
@@ -230,7 +258,6 @@ TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& b
   out.budget = config.match.budget > 0 ? config.match.budget : 4 * (config.match.iterations + 2);
   Config each = config;
   each.match.iterations = std::min(config.match.iterations, std::max(2, out.budget / K - 2));
-  const double target = config.match.value;
   for (const auto& settings : configs) {
     TuneTrial t;
     t.settings = settings;
@@ -261,22 +288,7 @@ TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& b
     out.evaluations += int(t.match.trials.size());
     out.trials.push_back(t);
   }
-  // The cheapest that reaches the target; else the closest to it.
-  for (int i = 0; i < K; ++i) {
-    const TuneTrial& t = out.trials[size_t(i)];
-    if (std::isnan(t.costMs)) continue;
-    if (out.chosen < 0) {
-      out.chosen = i;
-      continue;
-    }
-    const TuneTrial& b = out.trials[size_t(out.chosen)];
-    if (t.match.reachable != b.match.reachable) {
-      if (t.match.reachable) out.chosen = i;
-    } else if (t.match.reachable ? t.costMs < b.costMs
-                                 : std::abs(t.match.achieved - target) < std::abs(b.match.achieved - target)) {
-      out.chosen = i;
-    }
-  }
+  out.chosen = chooseConfiguration(out.trials, config.match);
   if (out.chosen < 0) {
     std::string why = out.trials.empty() || out.trials.back().match.trials.empty()
                           ? ""

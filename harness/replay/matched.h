@@ -58,11 +58,22 @@ struct TuneResult {
   int budget = 0;
 };
 
+// Whether a search meets its target: reached it, or (an error target) stayed more accurate than it
+// even at the coarsest setting.
+bool meetsTarget(const MatchResult& m, const MatchSpec& spec);
+
+// The configuration a tuned search draws (index into `trials`; -1 when none was timed): the cheapest
+// of those that meet the target, else the one whose metric came closest to it. A configuration too
+// accurate at its coarsest meets an error target: choosing by closeness there would pick a coarser
+// grid that misses the target over a finer one that meets it.
+int chooseConfiguration(const std::vector<TuneTrial>& trials, const MatchSpec& spec);
+
 // The tuned search (each scheme at its best configuration): for every configuration of the
 // case's tuning space (Case::tune: the cartesian product of its settings), the main parameter's
 // matched search with min(iterations, max(2, budget / K - 2)) steps, then the mean GPU ms of the
-// match's frames at the value found. The cheapest configuration that reaches the target wins; if
-// none does, the one whose metric is closest to it (its match says unreachable). A configuration
+// match's frames at the value found. The cheapest configuration that meets the target wins
+// (chooseConfiguration); if none does, the one whose metric is closest to it (its match says
+// unreachable). A configuration
 // that cannot run is recorded and skipped; throws only when none runs.
 TuneResult tuneAndMatch(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                         const CameraPath& path, const Config& config, const Case& c);
