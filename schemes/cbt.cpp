@@ -212,6 +212,7 @@ class Cbt : public Scheme {
         .params = cbtParams(),
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {4, 7, 14},
         .path = DrawPath::GpuIndirect,
         .vert = "cbt",
     };

@@ -25,6 +25,7 @@ class CbtTs : public Scheme {
         .params = cbtParams(),
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {4, 7, 14},
         .path = DrawPath::GpuIndirect,
         .vert = "cbt_ts",
         .topology = Topology::Tri3,

@@ -342,6 +342,7 @@ class Cdlod : public Scheme {
           .params = params,
           .mainParam = "tri_size",
           .mainParamRole = MainParamRole::TriangleWidthPx,
+          .front = {2, 4, 8},
           .path = DrawPath::InstancedGrid,
           .vert = "cdlod",
           .counters = {{.frameKey = "cdlod_seam_risk", .caseKey = "cdlod_seam_risk_frames", .label = "seam possible"}},

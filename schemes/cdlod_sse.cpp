@@ -227,6 +227,7 @@ class CdlodSse : public Scheme {
           .params = params,
           .mainParam = "max_error_px",
           .mainParamRole = MainParamRole::Knob,
+          .front = {1, 2, 4},
           .path = DrawPath::InstancedGrid,
           .vert = "cdlod",
           .counters = {{.frameKey = "cdlod_sse_unmet_nodes",

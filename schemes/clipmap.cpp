@@ -392,6 +392,7 @@ class Clipmap : public Scheme {
                     "a level is drawn once its extent reaches this many eye heights above the ground"}},
         .mainParam = "block",
         .mainParamRole = MainParamRole::Knob,
+        .front = {8, 16, 32},
         .path = DrawPath::InstancedGrid,
         .vert = "clipmap",
         .culls = true,

@@ -36,6 +36,7 @@ class Density : public Scheme {
             },
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {2, 4, 8},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalEven,
         .tesc = "density",

@@ -41,6 +41,7 @@ class Distance : public Scheme {
                    {"dmax", LB_DISTANCE_DMAX, 1.0, 0, 8, false,
                     "distance / terrain extent at which the level falls to min_lod (minMaxDistance.y)"}},
         .mainParam = "max_lod",
+        .front = {8, 16, 32},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalOdd,
         .tesc = "distance",

@@ -89,6 +89,7 @@ class ErrBound : public Scheme {
                     "guaranteed maximum screen-space geometric error in pixels"}},
         .mainParam = "max_error_px",
         .mainParamRole = MainParamRole::ErrorBoundPx,
+        .front = {1, 2, 4},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::Integer,
         .tesc = "errbound",

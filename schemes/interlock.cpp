@@ -35,6 +35,7 @@ class Interlock : public Scheme {
                    {"cull", LB_INTERLOCK_CULL, 1, 0, 1, true,
                     "1: per-patch frustum culling (not in the book); 0: draw every patch"}},
         .mainParam = "max_lod",
+        .front = {4, 8, 16},
         .topology = Topology::Quad12,
         .partitioning = Partitioning::FractionalOdd,
         .tesc = "interlock",

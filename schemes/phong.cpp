@@ -45,6 +45,7 @@ class Phong : public Scheme {
             },
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {2, 4, 8},
         .topology = Topology::Tri3,
         .partitioning = Partitioning::FractionalOdd,
         .tesc = "phong",

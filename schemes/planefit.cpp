@@ -53,6 +53,7 @@ class PlaneFitScheme : public Scheme {
               "block deviation earning the full distance LOD (fit=0: the book's unitless deviation, ~0.3-0.8; fit=1: "
               "fraction of the terrain extent, e.g. 0.004)"}},
         .mainParam = "max_lod",
+        .front = {8, 16, 32},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalOdd,
         .tesc = "planefit",

@@ -4,7 +4,7 @@
 
 namespace lb {
 
-// Each scheme file defines one factory; adding a scheme = one line here.
+// Each scheme file defines one factory; adding a scheme = its declaration here and its line in the table.
 const Scheme& uniformScheme();
 const Scheme& sphereScheme();
 const Scheme& interlockScheme();
@@ -22,14 +22,37 @@ const Scheme& clipmapScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
 
-const std::vector<const Scheme*>& allSchemes() {
-  static const std::vector<const Scheme*> schemes = {
-      &uniformScheme(),  &sphereScheme(),   &interlockScheme(),  &sphereRingsScheme(),
-      &densityScheme(),  &phongScheme(),    &distanceScheme(),   &referenceScheme(),
-      &planeFitScheme(), &errBoundScheme(), &sphereEdgeScheme(), &cdlodScheme(),
-      &cdlodSseScheme(), &clipmapScheme(),  &cbtScheme(),        &cbtTsScheme(),
+static std::vector<const Scheme*>& registered() {
+  static std::vector<const Scheme*> schemes = {
+      // One scheme a line, so that adding one is one line of a diff.
+      // clang-format off
+      &uniformScheme(),
+      &sphereScheme(),
+      &interlockScheme(),
+      &sphereRingsScheme(),
+      &densityScheme(),
+      &phongScheme(),
+      &distanceScheme(),
+      &referenceScheme(),
+      &planeFitScheme(),
+      &errBoundScheme(),
+      &sphereEdgeScheme(),
+      &cdlodScheme(),
+      &cdlodSseScheme(),
+      &clipmapScheme(),
+      &cbtScheme(),
+      &cbtTsScheme(),
+      // clang-format on
   };
   return schemes;
+}
+
+const std::vector<const Scheme*>& allSchemes() {
+  return registered();
+}
+
+void addPluginScheme(const Scheme& scheme) {
+  registered().push_back(&scheme);
 }
 
 TuneSpace defaultTuneSpace(const Scheme& scheme) {
@@ -72,6 +95,24 @@ const Scheme* findScheme(const std::string& name) {
   for (const Scheme* s : controlSchemes())
     if (s->info().name == name) return s;
   return nullptr;
+}
+
+const std::vector<std::string>& schemeGroupNames() {
+  static const std::vector<std::string> names = {"all", "tessellation", "instanced-grid", "gpu-indirect", "controls"};
+  return names;
+}
+
+std::vector<const Scheme*> schemeGroup(const std::string& group) {
+  if (group == "controls") return controlSchemes();
+  std::vector<const Scheme*> out;
+  for (const Scheme* s : allSchemes()) {
+    const DrawPath path = s->info().path;
+    if (group == "all" || (group == "tessellation" && path == DrawPath::Tessellation) ||
+        (group == "instanced-grid" && path == DrawPath::InstancedGrid) ||
+        (group == "gpu-indirect" && path == DrawPath::GpuIndirect))
+      out.push_back(s);
+  }
+  return out;
 }
 
 const Scheme* schemeWithRole(MainParamRole role) {

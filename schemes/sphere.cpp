@@ -21,6 +21,7 @@ class Sphere : public Scheme {
                     "1 = integer partitioning instead of fractional_even (popping scenario)"}},
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {2, 4, 8},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalEven,
         .tesc = "sphere",

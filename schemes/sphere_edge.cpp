@@ -25,6 +25,7 @@ class SphereEdge : public Scheme {
                     "1 = integer partitioning instead of fractional_even"}},
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {2, 4, 8},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalEven,
         .tesc = "sphere_edge",

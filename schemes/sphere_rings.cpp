@@ -145,6 +145,7 @@ class SphereRings : public Scheme {
               "1: power-of-2 levels at ring boundaries; 0: integer+even only (cracks)"}},
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,
+        .front = {2, 4, 8},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::FractionalEven,
         .tesc = "sphere_rings",

@@ -15,6 +15,7 @@ class Uniform : public Scheme {
         .params = {{"level", LB_UNIFORM_LEVEL, 8, 1, 64, true, "tessellation level of every edge and interior"}},
         .mainParam = "level",
         .mainParamRole = MainParamRole::UniformLevel,
+        .front = {2, 4, 8},
         .topology = Topology::Quad4,
         .partitioning = Partitioning::Integer,
         .tesc = "uniform",

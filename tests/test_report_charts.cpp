@@ -179,30 +179,31 @@ TEST(ReportAxes, Log2AxisTicksEveryGrid) {
 }
 
 TEST(ReportStyle, EverySchemeHasItsOwnFixedColourAndShape) {
-  std::set<std::string> colours, shapes, names;
-  std::vector<SchemeStyle> all = schemeStyles();
-  all.insert(all.end(), spareSchemeStyles().begin(), spareSchemeStyles().end());
-  for (auto& s : all) {
-    EXPECT_TRUE(std::regex_match(std::string(s.colour), std::regex("#[0-9A-Fa-f]{6}"))) << s.scheme;
+  std::set<std::string> colours, shapes;
+  for (const SchemeStyle& s : schemePalette()) {
+    EXPECT_TRUE(std::regex_match(std::string(s.colour), std::regex("#[0-9A-Fa-f]{6}"))) << s.colour;
     colours.insert(s.colour);
     shapes.insert(s.shape);
-    if (*s.scheme) names.insert(s.scheme);
   }
-  EXPECT_EQ(all.size(), 20u) << "room for 20 schemes";
-  EXPECT_EQ(colours.size(), all.size()) << "two schemes share a colour";
-  EXPECT_EQ(shapes.size(), all.size()) << "two schemes share a point shape";
+  EXPECT_EQ(schemePalette().size(), 20u) << "room for 20 schemes";
+  EXPECT_EQ(colours.size(), schemePalette().size()) << "two palette entries share a colour";
+  EXPECT_EQ(shapes.size(), schemePalette().size()) << "two palette entries share a point shape";
   // Vega's "triangle" is its "triangle-up": one of them only.
   EXPECT_FALSE(shapes.count("triangle") && shapes.count("triangle-up"));
-  // A name without an entry takes a spare style, the same every time.
-  const std::string spare = schemeShape("not-a-scheme");
-  EXPECT_TRUE(std::any_of(spareSchemeStyles().begin(), spareSchemeStyles().end(),
-                          [&](const SchemeStyle& s) { return spare == s.shape; }));
-  for (const Scheme* s : allSchemes()) EXPECT_TRUE(names.count(s->info().name)) << s->info().name << " has no colour";
+  // Every registered scheme its own, from its place in the registry: no table to edit.
+  std::set<std::pair<std::string, std::string>> styles;
+  for (const Scheme* s : allSchemes())
+    EXPECT_TRUE(styles.insert({schemeColour(s->info().name), schemeShape(s->info().name)}).second)
+        << s->info().name << " shares a style";
+  // The built-in schemes keep the styles they had when each had a named entry.
   EXPECT_EQ(schemeColour("errbound"), "#000000");
+  EXPECT_EQ(schemeColour("uniform"), "#777777");
+  EXPECT_EQ(schemeColour("cbt-ts"), "#CC3311");
   // An unknown name: a valid colour, the same every time, not black (the reference front's).
   std::string c = schemeColour("not-a-scheme");
   EXPECT_TRUE(std::regex_match(c, std::regex("#[0-9A-Fa-f]{6}")));
   EXPECT_EQ(c, schemeColour("not-a-scheme"));
+  EXPECT_EQ(schemeShape("not-a-scheme"), schemeShape("not-a-scheme"));
   EXPECT_NE(c, "#000000");
 }
 

@@ -1,19 +1,21 @@
-// The files a scheme needs besides its own schemes/<name>.cpp, checked for every registered scheme.
-// README's "Adding a scheme" lists the same files: a scheme missing any of them fails here with
-// the whole list of what is missing, not one item per run.
+// What a scheme truly needs besides its own schemes/<name>.cpp (its shaders, its line in the
+// registry, a README row, its cases in the CI config and baseline), checked for every registered
+// scheme. README's "Adding a scheme" lists the same: a scheme missing any of them fails here with
+// the whole list of what is missing, not one item per run. Lists that grow with every scheme
+// (configs' scheme lists, chart colours) are derived from the registry, so they ask for nothing.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "config/config.h"
 #include "metrics/frame_metrics.h"
-#include "report/charts.h"
 #include "schemes/registry.h"
 
 using namespace lb;
@@ -66,14 +68,8 @@ std::string upper(std::string s) {
   return s;
 }
 
-const nlohmann::json* configEntry(const nlohmann::json& config, const std::string& scheme) {
-  for (const auto& s : config["schemes"])
-    if (s.value("name", "") == scheme) return &s;
-  return nullptr;
-}
-
-std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& quick, const nlohmann::json& ci,
-                                    const std::string& readme) {
+std::vector<std::string> missingFor(const Scheme& scheme, const std::set<std::string>& ci,
+                                    const std::set<std::string>& baseline, const std::string& readme) {
   const SchemeInfo& info = scheme.info();
   std::vector<std::string> missing;
   auto need = [&](bool ok, const std::string& what) {
@@ -91,52 +87,55 @@ std::vector<std::string> missingFor(const Scheme& scheme, const nlohmann::json& 
   const std::string lodShader = stem + (vertexStage ? ".vert" : ".tesc");
   const std::string tesc = "shaders/" + lodShader;
   need(!stem.empty() && exists(tesc), tesc);
-  if (indirect && exists(tesc)) {
-    std::smatch m;
-    const std::string text = readText(kRoot + "/" + tesc);
-    if (std::regex_search(text, m, std::regex("#include \"([a-z0-9_]+)_params\\.h\""))) stem = m[1];
-  }
   if (!info.compute.empty()) need(exists("shaders/" + info.compute + ".comp"), "shaders/" + info.compute + ".comp");
   if (!info.params.empty()) {
-    const std::string header = stem + "_params.h";
-    auto slots = defines(header);
-    need(!slots.empty(), "shaders/" + header + " (its parameter slots)");
-    for (const ParamSpec& p : info.params) {
-      const std::string macro = "LB_" + upper(stem) + "_" + upper(p.name);
-      need(slots.count(macro) && slots[macro] == std::to_string(p.slot),
-           "shaders/" + header + ": #define " + macro + " " + std::to_string(p.slot));
-    }
+    // The slots come from a parameter header the LOD shader includes (directly or through a .glsl):
+    // its own shaders/<stem>_params.h, or the one of the scheme it shares a rule with (cbt-ts takes
+    // cbt's).
     std::set<std::string> seen;
-    need(shaderWithIncludes(lodShader, seen).find("#include \"" + header + "\"") != std::string::npos,
-         tesc + ": #include \"" + header + "\" (directly or through a .glsl it includes)");
+    const std::string text = shaderWithIncludes(lodShader, seen);
+    static const std::regex paramsInclude(R"re(#include\s+"([a-z0-9_]+_params\.h)")re");
+    std::map<std::string, std::string> slots;
+    for (std::sregex_iterator it(text.begin(), text.end(), paramsInclude), end; it != end; ++it)
+      for (auto& [k, v] : defines((*it)[1])) slots[k] = v;
+    need(!slots.empty(), tesc + ": #include \"" + stem + "_params.h\" (its parameter slots)");
+    for (const ParamSpec& p : info.params) {
+      bool found = false;
+      for (auto& [macro, value] : slots)
+        found =
+            found || (macro.size() > p.name.size() + 1 && macro.rfind("LB_", 0) == 0 &&
+                      macro.compare(macro.size() - p.name.size() - 1, std::string::npos, "_" + upper(p.name)) == 0 &&
+                      value == std::to_string(p.slot));
+      need(found, "shaders/" + stem + "_params.h: #define LB_" + upper(stem) + "_" + upper(p.name) + " " +
+                      std::to_string(p.slot) + " (included by " + tesc + ")");
+    }
   }
-  // The main parameter names a parameter; the default job sweeps it (a front needs several values).
-  bool mainDeclared = info.mainParam.empty();
-  for (const ParamSpec& p : info.params) mainDeclared = mainDeclared || p.name == info.mainParam;
-  need(mainDeclared, "schemes/" + info.name + ".cpp: mainParam '" + info.mainParam + "' is not one of its parameters");
-  if (!info.mainParam.empty()) {
-    const nlohmann::json* q = configEntry(quick, info.name);
-    bool swept = q && q->contains("params") && (*q)["params"].contains(info.mainParam) &&
-                 (*q)["params"][info.mainParam].is_array() && (*q)["params"][info.mainParam].size() >= 2;
-    need(swept, "configs/quick.json: {\"name\": \"" + info.name + "\", \"params\": {\"" + info.mainParam +
-                    "\": [several values]}}");
+  // The main parameter names a parameter, and the default job's front sweeps it over several values.
+  const ParamSpec* main = nullptr;
+  for (const ParamSpec& p : info.params)
+    if (p.name == info.mainParam) main = &p;
+  need(info.mainParam.empty() || main,
+       "schemes/" + info.name + ".cpp: mainParam '" + info.mainParam + "' is not one of its parameters");
+  if (main) {
+    bool inRange = info.front.size() >= 2;
+    for (double v : info.front) inRange = inRange && v >= main->min && v <= main->max;
+    need(inRange, "schemes/" + info.name + ".cpp: .front = {several values of " + info.mainParam + " in its range}");
   }
-  need(configEntry(ci, info.name) != nullptr,
-       "configs/ci.json: {\"name\": \"" + info.name + "\"} (then bash scripts/refresh-baseline.sh)");
-  bool styled = false;
-  for (const SchemeStyle& s : schemeStyles()) styled = styled || info.name == s.scheme;
-  need(styled, "harness/report/charts_style.cpp: a colour and point shape in schemeStyles()");
+  need(ci.count(info.name) > 0, "configs/ci.json: its cases (\"all\" takes every scheme)");
+  need(baseline.count(info.name) > 0, "results/baseline/ci: its cases (bash scripts/refresh-baseline.sh)");
   need(readme.find("\n| `" + info.name + "` |") != std::string::npos, "README.md: a row in the Schemes table");
   return missing;
 }
 
 TEST(SchemeChecklist, EverySchemeHasEveryFileItNeeds) {
-  const nlohmann::json quick = nlohmann::json::parse(readText(kRoot + "/configs/quick.json"));
-  const nlohmann::json ci = nlohmann::json::parse(readText(kRoot + "/configs/ci.json"));
+  std::set<std::string> ci, baseline;
+  for (const SchemeEntry& e : loadConfig(kRoot + "/configs/ci.json").schemes) ci.insert(e.name);
+  for (const auto& f : std::filesystem::directory_iterator(kRoot + "/results/baseline/ci/r1/cases"))
+    baseline.insert(f.path().filename().string().substr(0, f.path().filename().string().find('_')));
   const std::string readme = readText(kRoot + "/README.md");
   std::string report;
   for (const Scheme* s : allSchemes())
-    for (const std::string& m : missingFor(*s, quick, ci, readme)) report += "\n  " + s->info().name + ": " + m;
+    for (const std::string& m : missingFor(*s, ci, baseline, readme)) report += "\n  " + s->info().name + ": " + m;
   EXPECT_TRUE(report.empty()) << "missing (README.md, \"Adding a scheme\"):" << report;
 }
 

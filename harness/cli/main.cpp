@@ -29,7 +29,9 @@
 #include "replay/measure.h"
 #include "report/report.h"
 #include "results/gbench_json.h"
+#include "schemes/plugins.h"
 #include "schemes/registry.h"
+#include "sha256.h"
 #include "sweep/merge.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
@@ -205,6 +207,33 @@ static int renderCmd(const RenderArgs& a) {
   return ctx.validationErrors > 0 ? 3 : 0;
 }
 
+// A run's report and merge read its plugin schemes' draw paths, counters and main parameters:
+// the libraries run.json names are loaded again where they are still there, unchanged.
+static void loadRunPlugins(const std::string& runDir) {
+  std::ifstream f(runDir + "/run.json");
+  const nlohmann::json run = nlohmann::json::parse(f, nullptr, false);
+  if (run.is_discarded() || !run.contains("context") || !run["context"].contains("plugins")) return;
+  for (const nlohmann::json& p : run["context"]["plugins"]) {
+    const std::string file = p.value("file", ""), digest = p.value("sha256", "");
+    std::string why;
+    try {
+      if (!std::filesystem::is_regular_file(file))
+        why = "it is gone";
+      else if (sha256File(file) != digest)
+        why = "it changed since the run (sha256 " + digest.substr(0, 8) + " -> " + sha256File(file).substr(0, 8) + ")";
+      else
+        loadPlugin(file);
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
+    if (!why.empty())
+      std::fprintf(stderr,
+                   "lodbench: note: plugin %s of this run not loaded: %s; its schemes are named without their "
+                   "draw path, counters or main parameter (give the run's build with --plugin)\n",
+                   file.c_str(), why.c_str());
+  }
+}
+
 // CLI11's Range lets NaN through (every comparison with it is false) and prints its bounds with
 // std::to_string ("not in range 0.000000 to 1.000000"), hence this check for floating-point flags.
 static CLI::Validator finite(double lo, double hi) {
@@ -229,6 +258,12 @@ int main(int argc, char** argv) {
   CLI::App app{"lodbench: compare GPU terrain level-of-detail schemes on one Vulkan tessellation renderer"};
   app.require_subcommand(1);
   app.set_version_flag("--version", kToolVersion);
+  std::vector<std::string> pluginFiles;
+  app.add_option("--plugin", pluginFiles,
+                 "Scheme library to load (repeatable; docs/plugins.md): its schemes join every command like "
+                 "built-in ones. Given before or after the subcommand")
+      ->allow_extra_args(false);  // one file per --plugin, so `--plugin a.so run c.json` leaves `run` alone
+  app.fallthrough();  // `lodbench run c.json --plugin lib.so` as well as `lodbench --plugin lib.so run c.json`
 
   auto* list = app.add_subcommand("list", "List LOD schemes with their parameters, defaults and ranges");
   auto* devices = app.add_subcommand("devices", "List Vulkan devices and why each is or is not suitable");
@@ -468,6 +503,14 @@ int main(int argc, char** argv) {
   }
   ra.sizeOrSeedGiven = render->count("--size") + render->count("--seed") > 0;
   try {
+    for (const std::string& file : pluginFiles) try {
+        loadPlugin(file);
+      } catch (const InputError& e) {
+        throw InputError(std::string("--plugin: ") + e.what());
+      }
+    if (*report) loadRunPlugins(rep.runDir);
+    if (*merge)
+      for (const std::string& dir : mergeInputs) loadRunPlugins(dir);
     if (*list) return listSchemes();
     if (*devices) return listDevicesCmd();
     if (*render) return renderCmd(ra);

@@ -1,6 +1,7 @@
 #include "config/case_identity.h"
 
 #include "config/config.h"
+#include "schemes/plugins.h"
 #include "sha256.h"
 #include "terrain/generators.h"
 #include "terrain/heightfield.h"
@@ -91,9 +92,14 @@ json measurementInputs(const Config& c) {
 
 json caseInputs(const json& terrain, const json& path, int width, int height, const std::string& scheme,
                 const json& params, const json& measurement) {
-  return {{"tool_version", kToolVersion}, {"scheme", scheme}, {"params", params},
-          {"terrain", terrain},           {"path", path},     {"resolution", {width, height}},
-          {"measurement", measurement}};
+  json j = {{"tool_version", kToolVersion}, {"scheme", scheme}, {"params", params},
+            {"terrain", terrain},           {"path", path},     {"resolution", {width, height}},
+            {"measurement", measurement}};
+  // A plugin's scheme is its library: a rebuilt one (its code or its shaders) is another scheme.
+  // Named only for plugins, so the digests of built-in schemes' cases hold.
+  if (const LoadedPlugin* p = pluginOfScheme(scheme))
+    j["plugin"] = {{"sha256", p->sha256}, {"api_version", p->apiVersion}, {"name", p->name}};
+  return j;
 }
 
 // nlohmann::json keeps object keys sorted and prints doubles round-trip exactly, so the dump is a

@@ -1,13 +1,13 @@
 #pragma once
 // What defines a case, recorded in its case file as "inputs" with their SHA-256 "digest":
 // terrain spec and heightmap file contents, camera path file contents, resolution, scheme and
-// every parameter with its resolved value, every setting that shapes the records, and the tool
-// version. File names are not part of it (contents are), so a run resumes from another working
-// directory. Resume reuses a finished case only when its digest is unchanged, and a config that
-// grows resumes its folder, so the digest is all that stands between a kept case and one whose
-// numbers meant something else: a change of what a parameter, setting or metric means, or of what
-// these records hold, bumps the tool version (version.h). expandCases uses the digest to keep
-// case ids unique.
+// every parameter with its resolved value, every setting that shapes the records, the tool
+// version, and for a plugin's scheme the library's SHA-256 and plugin API version (a rebuilt
+// plugin's cases run again on resume). File names are not part of it (contents are), so a run
+// resumes from another working directory. Resume reuses a finished case only when its digest is unchanged, and a config
+// that grows resumes its folder, so the digest is all that stands between a kept case and one whose numbers meant
+// something else: a change of what a parameter, setting or metric means, or of what these records hold, bumps the tool
+// version (version.h). expandCases uses the digest to keep case ids unique.
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -15,6 +15,7 @@
 #include "did_you_mean.h"
 #include "error.h"
 #include "number_text.h"
+#include "schemes/plugins.h"
 #include "schemes/registry.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/generators.h"
@@ -216,19 +217,34 @@ static void parseTune(const ConfigReader& r, const Scheme& scheme, const json& t
   e.tuneGiven = true;
 }
 
+static bool isFront(const ConfigReader& r, const json& s, const std::string& ptr) {
+  if (!s.is_object() || !s.contains("front")) return false;
+  if (!s["front"].is_boolean()) r.fail(ptr + "/front", "expected true or false");
+  return s["front"].get<bool>();
+}
+
 static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::string& ptr) {
   SchemeEntry e;
+  e.field = ptr;
   json params = json::object();
   if (s.is_string()) {
     e.name = s.get<std::string>();
   } else {
-    r.onlyKeys(s, ptr, {"name", "params", "tune"});
+    r.onlyKeys(s, ptr, {"name", "params", "tune", "front"});
     if (!s.contains("name")) r.fail(ptr, "missing 'name'");
     e.name = r.string(s["name"], ptr + "/name");
     if (s.contains("params")) params = s["params"];
   }
   const Scheme* scheme = findScheme(e.name);
   if (!scheme) r.fail(ptr + (s.is_string() ? "" : "/name"), unknownSchemeText(printable(e.name)));
+  // "front": true sweeps the main parameter over the values the scheme names (SchemeInfo::front).
+  if (isFront(r, s, ptr)) {
+    const SchemeInfo& info = scheme->info();
+    if (info.front.empty()) r.fail(ptr + "/front", info.name + " has no main parameter to sweep");
+    if (params.is_object() && params.contains(info.mainParam))
+      r.fail(ptr + "/params/" + info.mainParam, "'front' sweeps " + info.mainParam + " already; list one or the other");
+    if (params.is_object()) params[info.mainParam] = info.front;
+  }
   if (s.is_object() && s.contains("tune")) parseTune(r, *scheme, s["tune"], ptr + "/tune", e);
   if (!params.is_object()) r.fail(ptr + "/params", "expected an object of parameter values");
   // Cartesian product of the listed values of each parameter.
@@ -270,20 +286,100 @@ static SchemeEntry parseScheme(const ConfigReader& r, const json& s, const std::
   return e;
 }
 
+static bool isGroupName(const std::string& name) {
+  const std::vector<std::string>& groups = schemeGroupNames();
+  return std::find(groups.begin(), groups.end(), name) != groups.end();
+}
+
+// A group entry, "all" or {"group": "all", "except": ["reference"], "front": true}: each scheme of
+// the group that no entry names and no earlier group took, at its defaults or over its front.
+static std::vector<SchemeEntry> parseGroup(const ConfigReader& r, const json& s, const std::string& ptr,
+                                           const std::set<std::string>& named, std::set<std::string>& taken) {
+  std::string group = s.is_string() ? s.get<std::string>() : "";
+  std::set<std::string> except;
+  if (s.is_object()) {
+    r.onlyKeys(s, ptr, {"group", "except", "front"});
+    group = r.string(s["group"], ptr + "/group");
+  }
+  std::string groups;
+  for (const std::string& g : schemeGroupNames()) groups += (groups.empty() ? "" : ", ") + g;
+  if (!isGroupName(group))
+    r.fail(ptr + "/group", "'" + printable(group) + "' is no scheme group (groups: " + groups + ")" +
+                               didYouMean(group, schemeGroupNames()));
+  std::vector<std::string> members;
+  for (const Scheme* m : schemeGroup(group)) members.push_back(m->info().name);
+  if (s.is_object() && s.contains("except")) {
+    const json& x = s["except"];
+    if (!x.is_array()) r.fail(ptr + "/except", "expected an array of scheme names");
+    for (size_t i = 0; i < x.size(); ++i) {
+      const std::string at = ptr + "/except/" + std::to_string(i), name = r.string(x[i], at);
+      if (std::find(members.begin(), members.end(), name) == members.end())
+        r.fail(at, "'" + printable(name) + "' is not in group '" + group + "'" + didYouMean(name, members));
+      except.insert(name);
+    }
+  }
+  const bool front = isFront(r, s, ptr);
+  std::vector<SchemeEntry> out;
+  for (const Scheme* m : schemeGroup(group)) {
+    const SchemeInfo& info = m->info();
+    if (named.count(info.name) || except.count(info.name) || !taken.insert(info.name).second) continue;
+    json entry = {{"name", info.name}};
+    if (front && !info.front.empty()) entry["front"] = true;  // a scheme without a main parameter runs once
+    out.push_back(parseScheme(r, entry, ptr));
+  }
+  if (out.empty()) r.fail(ptr, "group '" + group + "' adds no scheme: another entry names or excepts each of them");
+  return out;
+}
+
 void parseSchemeSection(const ConfigReader& r, const json& j, Config& c) {
   if (!j.contains("schemes") || !j["schemes"].is_array() || j["schemes"].empty())
-    r.fail("/schemes", "expected a non-empty array of schemes (known: " + schemeNames() + ")");
-  for (size_t i = 0; i < j["schemes"].size(); ++i)
-    c.schemes.push_back(parseScheme(r, j["schemes"][i], "/schemes/" + std::to_string(i)));
+    r.fail("/schemes", "expected a non-empty array of schemes or groups (\"all\"; known: " + schemeNames() + ")");
+  const json& list = j["schemes"];
+  auto groupEntry = [](const json& s) {
+    return s.is_string() ? isGroupName(s.get<std::string>()) : s.contains("group");
+  };
+  std::set<std::string> named, taken;
+  for (const json& s : list)
+    if (!groupEntry(s)) {
+      if (s.is_string()) named.insert(s.get<std::string>());
+      if (s.is_object() && s.contains("name") && s["name"].is_string()) named.insert(s["name"].get<std::string>());
+    }
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string ptr = "/schemes/" + std::to_string(i);
+    if (list[i].is_object() && list[i].contains("group") && list[i].contains("name"))
+      r.fail(ptr, "an entry names a scheme ('name') or a group ('group'), not both");
+    if (!groupEntry(list[i])) {
+      c.schemes.push_back(parseScheme(r, list[i], ptr));
+      continue;
+    }
+    for (SchemeEntry& e : parseGroup(r, list[i], ptr, named, taken)) c.schemes.push_back(std::move(e));
+  }
+}
+
+// "plugins": ["build/libmyscheme.so"]: scheme libraries (schemes/plugins.h), relative to the
+// config's folder, loaded before the schemes are read so that entries and groups take their schemes.
+static void parsePluginSection(const ConfigReader& r, const json& j, const std::string& baseDir, Config& c) {
+  if (!j.contains("plugins")) return;
+  if (!j["plugins"].is_array()) r.fail("/plugins", "expected an array of plugin library files");
+  for (size_t i = 0; i < j["plugins"].size(); ++i) {
+    const std::string ptr = "/plugins/" + std::to_string(i);
+    const std::string file = resolvePath(baseDir, r.string(j["plugins"][i], ptr));
+    try {
+      loadPlugin(file);
+    } catch (const InputError& e) {
+      r.fail(ptr, e.what());
+    }
+    c.plugins.push_back(file);
+  }
 }
 
 Config parseConfig(const std::string& text, const std::string& file, const std::string& baseDir) {
   json j = parseJsonStrict(text, file);
   ConfigReader r{file, jsonLineMap(text)};
-  r.onlyKeys(j, "", {"name",     "device",        "resolution", "resolutions", "grid",           "grids",
-                     "fps",      "warmup_frames", "max_frames", "repetitions", "case_timeout_s", "terrain",
-                     "terrains", "path",          "paths",      "schemes",     "images",         "measure",
-                     "match",    "description",   "timing",     "calibration", "energy",         "interleave"});
+  r.onlyKeys(j, "", {"name",          "device",     "resolution",  "resolutions",    "grid",    "grids",       "fps",
+                     "warmup_frames", "max_frames", "repetitions", "case_timeout_s", "terrain", "terrains",    "path",
+                     "paths",         "schemes",    "images",      "measure",        "match",   "description", "timing",
+                     "calibration",   "energy",     "interleave",  "plugins"});
   Config c;
   c.file = file;
   c.lines = r.lines;
@@ -294,6 +390,7 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   parseFrameSection(r, j, c);
   parseTerrainSection(r, j, baseDir, c);
   const std::vector<int> pathFrames = parsePathSection(r, j, baseDir, c);
+  parsePluginSection(r, j, baseDir, c);
   parseSchemeSection(r, j, c);
   parseImageSection(r, j, pathFrames, c);
   parseTimingSection(r, j, c);
@@ -301,9 +398,8 @@ Config parseConfig(const std::string& text, const std::string& file, const std::
   parseEnergySection(r, j, c);
   parseMeasureSection(r, j, c);
   parseMatchSection(r, j, c);
-  for (size_t i = 0; i < c.schemes.size(); ++i)
-    if (c.schemes[i].tuneGiven && !c.match.on())
-      r.fail("/schemes/" + std::to_string(i) + "/tune", "tuning needs a \"match\" section (a target to reach)");
+  for (const SchemeEntry& e : c.schemes)
+    if (e.tuneGiven && !c.match.on()) r.fail(e.field + "/tune", "tuning needs a \"match\" section (a target to reach)");
   return c;
 }
 
@@ -436,8 +532,8 @@ std::vector<Case> expandCases(const Config& config) {
           config.schemes[variants[i].entry].tune == config.schemes[variants[j].entry].tune) {
         // At the second entry's line, naming the first's: "c.json:9: field '/schemes/2': /schemes/0
         // (line 7) and /schemes/2 both run uniform level=3; remove one".
-        const std::string first = "/schemes/" + std::to_string(variants[i].entry),
-                          second = "/schemes/" + std::to_string(variants[j].entry);
+        const std::string first = config.schemes[variants[i].entry].field,
+                          second = config.schemes[variants[j].entry].field;
         const std::string firstLine = lineOf(config, first);
         std::string what = first == second ? first + " lists twice: " + variants[i].scheme + " "
                                            : first + (firstLine.empty() ? "" : " (" + firstLine.substr(2) + ")") +

@@ -17,6 +17,7 @@ namespace lb {
 
 struct SchemeEntry {
   std::string name;
+  std::string field;                  // JSON pointer of the entry ("/schemes/2"); a group's schemes share its entry's
   std::vector<ParamValues> variants;  // expanded parameter grid (at least one, possibly empty map)
   // "tune": the settings a tuned matched search tries ("grid" or a parameter: values); given =
   // the entry listed it (else a tuned match uses the registry's space, schemes/registry.h).
@@ -61,7 +62,10 @@ struct Config {
   // JSON pointer of each entry of `terrains` and `paths` ("/terrains/1", "/terrain/seed/2", "/paths/0")
   // for messages about them; empty for a Config built in code.
   std::vector<std::string> terrainFields, pathFields;
+  // "schemes": one entry per scheme, a group ("all", schemes/registry.h schemeGroup) expanded to
+  // its schemes that no other entry names.
   std::vector<SchemeEntry> schemes;
+  std::vector<std::string> plugins;  // "plugins": scheme libraries loaded while parsing (schemes/plugins.h)
   ImageRequest images;
   MeasureSpec measure;      // measurement passes (off unless "measure" is given)
   MatchSpec match;          // matched comparisons (off unless "match" is given)

@@ -55,8 +55,16 @@ struct SchemeInfo {
   // comparison searches it. "" = none (a scheme without parameters).
   std::string mainParam;
   MainParamRole mainParamRole = MainParamRole::Knob;
+  // Values of mainParam the default job sweeps (a config entry's "front": true, config/config.h),
+  // so each scheme has a front: at least two. Empty for a scheme without a main parameter.
+  std::vector<double> front;
   DrawPath path = DrawPath::Tessellation;
   std::string vert;  // InstancedGrid, GpuIndirect: shaders/<vert>.vert (includes terrain_vertex.glsl)
+  // Mesh: shaders/<task>.task and shaders/<mesh>.mesh, and whose LOD they draw: Tessellation (the
+  // base grid's patches, the LOD decided per patch in the task shader), InstancedGrid (the scheme's
+  // CPU selection, instancedLod) or GpuIndirect (the scheme's compute passes and state, gpuLod).
+  std::string task, mesh;
+  DrawPath meshLod = DrawPath::Tessellation;
   Topology topology = Topology::Quad4;
   Partitioning partitioning = Partitioning::FractionalEven;
   std::string tesc;                   // Tessellation: shader stem, shaders/<tesc>.tesc

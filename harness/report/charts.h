@@ -43,21 +43,20 @@ std::string chartFilesHtml(const Chart& c);
 // --- Scheme colours (charts_style.cpp) ---------------------------------------------------------
 // One fixed colour and point shape per scheme, the same in every chart, report and legend: Paul
 // Tol's colour-blind-safe "muted" palette, black for the error-bounded reference front, grey for the
-// uniform baseline; no two schemes share a colour or a shape. Room for 20: a scheme not in the table
-// takes one of six spare styles, in registry order, or (not registered) one picked by a hash.
+// uniform baseline. A scheme's style is the palette's entry at its registry index (schemes/registry.h),
+// so no two of the first 20 schemes share a colour or a shape and a new scheme needs no edit here; a
+// name the registry does not hold takes one of the spare entries, picked by a hash.
 struct SchemeStyle {
-  const char* scheme;
   const char* colour;  // "#rrggbb"
   const char* shape;   // Vega point shape: a built-in name or an SVG path in the unit square
 };
-const std::vector<SchemeStyle>& schemeStyles();
-const std::vector<SchemeStyle>& spareSchemeStyles();  // scheme == "": taken by schemes without an entry
+const std::vector<SchemeStyle>& schemePalette();
 std::string schemeColour(const std::string& scheme);
 std::string schemeShape(const std::string& scheme);
 
 // Schemes with at least one finished case: the colour domain of the run's charts.
 std::vector<std::string> chartSchemes(const ReportRun& run);
-// Colour and shape encodings by scheme over chartSchemes(run), with the fixed table's values.
+// Colour and shape encodings by scheme over chartSchemes(run), with each scheme's fixed style.
 nlohmann::json schemeColor(const ReportRun& run);
 nlohmann::json schemeShapeEncoding(const ReportRun& run);
 

@@ -1,8 +1,8 @@
 // Scheme colours and shapes shared by every chart and legend, and the links to a chart's files.
 // Colours: mostly Paul Tol's "muted" qualitative scheme (https://personal.sron.nl/~pault/), designed
 // to stay distinct under the common colour-vision deficiencies; each scheme also has its own point
-// shape (no two alike, 20 in all), so no chart relies on hue alone and a grey print still tells
-// them apart.
+// shape (no two alike among the first 20), so no chart relies on hue alone and a grey print still
+// tells them apart.
 #include <algorithm>
 #include <cstdint>
 
@@ -35,40 +35,38 @@ constexpr const char* kRing =
     "M0,-1A1,1 0 1 1 0,1A1,1 0 1 1 0,-1ZM0,-0.45A0.45,0.45 0 1 0 0,0.45A0.45,0.45 0 1 0 0,-0.45Z";
 constexpr const char* kFrame = "M-1,-1H1V1H-1ZM-0.45,-0.45V0.45H0.45V-0.45Z";
 
-// Room for 20 schemes: the registered ones by name, then four spare styles that a scheme without an
-// entry takes in registry order (a scheme added before its entry) or, when not registered, by hash.
-const SchemeStyle kSpare[] = {
-    {"", "#B8860B", kHalfDisc}, {"", "#6699CC", kTrapezoid}, {"", "#663333", kChevron}, {"", "#66AA55", kTee}};
-
 }  // namespace
 
-const std::vector<SchemeStyle>& schemeStyles() {
-  static const std::vector<SchemeStyle> table = {
-      {"uniform", "#777777", "square"},  // the baseline: neutral grey
-      {"reference", "#332288", "cross"},
-      {"sphere", "#88CCEE", "circle"},
-      {"sphere-edge", "#44AA99", "triangle-up"},
-      {"sphere-rings", "#117733", "triangle-down"},
-      {"distance", "#999933", "diamond"},
-      {"interlock", "#DDCC77", "triangle-right"},
-      {"density", "#CC6677", "triangle-left"},
-      {"planefit", "#882255", kRing},
-      {"phong", "#AA4499", kStar},
-      {"errbound", "#000000", kX},  // black: its sweep is the dashed reference front
+// Registry index i takes entry i, so a new scheme, built-in or a plugin's, gets a style of its own
+// without an edit here. The order keeps every built-in scheme's style as it was when each had a
+// named entry (the comments), so earlier reports and published charts keep their colours.
+const std::vector<SchemeStyle>& schemePalette() {
+  static const std::vector<SchemeStyle> palette = {
+      {"#777777", "square"},          // uniform: the baseline in neutral grey
+      {"#88CCEE", "circle"},          // sphere
+      {"#DDCC77", "triangle-right"},  // interlock
+      {"#117733", "triangle-down"},   // sphere-rings
+      {"#CC6677", "triangle-left"},   // density
+      {"#AA4499", kStar},             // phong
+      {"#999933", "diamond"},         // distance
+      {"#332288", "cross"},           // reference
+      {"#882255", kRing},             // planefit
+      {"#000000", kX},                // errbound: black, its sweep is the dashed reference front
+      {"#44AA99", "triangle-up"},     // sphere-edge
       // The instanced-grid schemes: the CDLOD pair in blue and dark teal, clipmaps in orange.
-      {"cdlod", "#0077BB", kHexagon},
-      {"cdlod-sse", "#005F56", kPentagon},
-      {"clipmap", "#EE7733", kFrame},
+      {"#0077BB", kHexagon},   // cdlod
+      {"#005F56", kPentagon},  // cdlod-sse
+      {"#EE7733", kFrame},     // clipmap
       // The GPU-indirect trees in magenta and red, bow-tie and hourglass: one LOD drawn two ways.
-      {"cbt", "#EE3377", kBowtie},
-      {"cbt-ts", "#CC3311", kHourglass},
+      {"#EE3377", kBowtie},     // cbt
+      {"#CC3311", kHourglass},  // cbt-ts
+      // Schemes added since, then plugins' schemes, in registry order.
+      {"#B8860B", kHalfDisc},
+      {"#6699CC", kTrapezoid},
+      {"#663333", kChevron},
+      {"#66AA55", kTee},
   };
-  return table;
-}
-
-const std::vector<SchemeStyle>& spareSchemeStyles() {
-  static const std::vector<SchemeStyle> spare(std::begin(kSpare), std::end(kSpare));
-  return spare;
+  return palette;
 }
 
 namespace {
@@ -80,18 +78,19 @@ uint32_t fnv1a(const std::string& s) {
   return h;
 }
 
-const SchemeStyle& styleOf(const std::string& scheme) {
-  for (auto& s : schemeStyles())
-    if (scheme == s.scheme) return s;
-  size_t unstyled = 0;  // registered schemes without an entry, in registry order
-  for (const Scheme* r : allSchemes()) {
-    const std::string& name = r->info().name;
-    bool styled = std::any_of(schemeStyles().begin(), schemeStyles().end(), [&](auto& s) { return name == s.scheme; });
-    if (styled) continue;
-    if (name == scheme && unstyled < std::size(kSpare)) return kSpare[unstyled];
-    ++unstyled;
-  }
-  return kSpare[fnv1a(scheme) % std::size(kSpare)];
+SchemeStyle styleOf(const std::string& scheme) {
+  const std::vector<SchemeStyle>& palette = schemePalette();
+  const size_t n = palette.size(), spare = 4;  // the last four: after the built-in schemes the comments name
+  const std::vector<const Scheme*>& schemes = allSchemes();
+  for (size_t i = 0; i < schemes.size(); ++i)
+    if (schemes[i]->info().name == scheme) {
+      if (i < n) return palette[i];
+      // Past the palette: its colours again, each with another entry's shape.
+      return {palette[n - spare + i % spare].colour, palette[(i / spare) % (n - spare)].shape};
+    }
+  // Not registered (a control, or a plugin's scheme whose library the report could not load): a
+  // spare style picked by a hash, the same every time.
+  return palette[n - spare + fnv1a(scheme) % spare];
 }
 
 }  // namespace

@@ -156,6 +156,16 @@ ResumePlan planResume(const std::string& dir, std::vector<Case>& cases) {
     }
     std::string what = cf.doc.contains("inputs") ? describeInputChange(cf.doc["inputs"], c.inputs)
                                                  : "recorded without an input digest (older lodbench)";
+    if (cf.doc.contains("inputs") && cf.doc["inputs"].is_object() && cf.doc["inputs"].contains("plugin") &&
+        c.inputs.contains("plugin")) {
+      json before = cf.doc["inputs"], now = c.inputs;
+      before.erase("plugin");
+      now.erase("plugin");
+      if (before == now) {
+        plan.rebuilt.push_back(c.id + ": " + what);
+        continue;
+      }
+    }
     plan.changed.push_back(c.id + ": " + (what.empty() ? "digest differs" : what));
   }
   return plan;
@@ -201,6 +211,7 @@ ResumePlan checkResume(const std::string& dir, const json& previous, int shardIn
                      " finished case(s) were run with other inputs:" + list(plan.changed) +
                      "\n(run again with --rerun-changed to run them again with the inputs of now)");
   for (auto& c : plan.changed) std::fprintf(stderr, "lodbench: rerunning changed case %s\n", c.c_str());
+  for (auto& c : plan.rebuilt) std::fprintf(stderr, "lodbench: rerunning case of a rebuilt plugin %s\n", c.c_str());
   if (!plan.renamed.empty())
     std::fprintf(stderr,
                  "lodbench: %zu case(s) in %s keep the id they were recorded with (the same inputs: a parameter "

@@ -47,6 +47,9 @@ struct ResumePlan {
   std::vector<std::string> changed;  // "<id>: <what changed>" for ok cases whose inputs changed
   std::vector<std::string> stale;    // ids of case files of no case of the config now (kept on disk)
   std::vector<std::string> renamed;  // "<recorded id> (listed now as <id of the config>)"
+  // "<id>: <what changed>" for ok cases whose inputs differ only in their plugin (a rebuilt scheme
+  // library): run again without asking, as new cases are.
+  std::vector<std::string> rebuilt;
 };
 ResumePlan planResume(const std::string& dir, std::vector<Case>& cases);
 

@@ -14,6 +14,7 @@
 #include "config/config.h"
 #include "metrics/coverage.h"
 #include "number_text.h"
+#include "schemes/plugins.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
 #include "stats.h"
@@ -82,7 +83,7 @@ json runContext(const Context& ctx, const Config& config) {
     energyReason = "the energy counter (" + energy->name() + ") did not change twice in 3 s";
   const GpuClocks clocks = energy->clocks();
   auto mhz = [](int v) { return v >= 0 ? json(v) : json(nullptr); };
-  return {
+  json context = {
       {"tool", "lodbench"},
       {"tool_version", kToolVersion},
 #ifdef NDEBUG
@@ -118,6 +119,15 @@ json runContext(const Context& ctx, const Config& config) {
       {"config_file", config.file},
       {"config", config.raw},
   };
+  // Scheme libraries loaded for this run (config "plugins" or --plugin): report loads them again.
+  for (const LoadedPlugin& p : loadedPlugins())
+    context["plugins"].push_back({{"file", p.path},
+                                  {"sha256", p.sha256},
+                                  {"api_version", p.apiVersion},
+                                  {"name", p.name},
+                                  {"built_against", p.builtAgainst},
+                                  {"schemes", p.schemes}});
+  return context;
 }
 
 static json summaryOf(const std::vector<double>& v) {

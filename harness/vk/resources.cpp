@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include "vk/context.h"
@@ -239,21 +241,54 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
   vkCmdPipelineBarrier2(cmd, &di);
 }
 
+static std::map<std::string, std::vector<uint32_t>>& pluginSpirv() {
+  static std::map<std::string, std::vector<uint32_t>> table;
+  return table;
+}
+
 std::string shaderDir() {
   const char* env = std::getenv("LODBENCH_SHADER_DIR");
-  return env && *env ? env : LODBENCH_SHADER_DIR;
+  if (env && *env) return env;
+  // An installed binary (cmake --install) finds its SPIR-V beside it, not in the build tree it came from.
+  static const std::string installed = [] {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) return std::string();
+    const std::filesystem::path dir = exe.parent_path().parent_path() / "share/lodbench/spirv";
+    return std::filesystem::exists(dir / "terrain.vert.spv", ec) ? dir.string() : std::string();
+  }();
+  return installed.empty() ? LODBENCH_SHADER_DIR : installed;
+}
+
+void addSpirv(const std::string& name, const unsigned char* bytes, size_t size) {
+  if (size == 0 || size % 4 != 0) throw std::runtime_error("SPIR-V '" + name + "' is not a whole number of words");
+  std::vector<uint32_t> words(size / 4);
+  std::memcpy(words.data(), bytes, size);
+  if (!pluginSpirv().emplace(name, std::move(words)).second)
+    throw std::runtime_error("SPIR-V '" + name + "' registered twice");
+}
+
+bool spirvExists(const std::string& name) {
+  std::error_code ec;
+  return pluginSpirv().count(name) || std::filesystem::is_regular_file(shaderDir() + "/" + name, ec);
 }
 
 vk::Unique<VkShaderModule> loadShaderModule(Context& ctx, const std::string& name) {
-  std::string path = shaderDir() + "/" + name;
-  std::ifstream f(path, std::ios::binary | std::ios::ate);
-  if (!f) throw std::runtime_error("cannot open shader " + path + " (build the project, or set LODBENCH_SHADER_DIR)");
-  std::vector<char> code(size_t(f.tellg()));
-  f.seekg(0);
-  f.read(code.data(), std::streamsize(code.size()));
+  std::vector<uint32_t> code;
+  auto plugin = pluginSpirv().find(name);
+  if (plugin != pluginSpirv().end()) {
+    code = plugin->second;
+  } else {
+    std::string path = shaderDir() + "/" + name;
+    std::ifstream f(path, std::ios::binary | std::ios::ate);
+    if (!f) throw std::runtime_error("cannot open shader " + path + " (build the project, or set LODBENCH_SHADER_DIR)");
+    code.resize(size_t(f.tellg()) / 4);
+    f.seekg(0);
+    f.read(reinterpret_cast<char*>(code.data()), std::streamsize(code.size() * 4));
+  }
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  ci.codeSize = code.size();
-  ci.pCode = reinterpret_cast<const uint32_t*>(code.data());
+  ci.codeSize = code.size() * 4;
+  ci.pCode = code.data();
   VkShaderModule m;
   VK_CHECK(vkCreateShaderModule(ctx.device, &ci, nullptr, &m));
   return vk::Unique(ctx.device, m);

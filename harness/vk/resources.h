@@ -72,7 +72,15 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
-vk::Unique<VkShaderModule> loadShaderModule(Context& ctx, const std::string& name);  // name relative to the SPIR-V dir
-std::string shaderDir();  // LODBENCH_SHADER_DIR env override, else the build's directory
+// A shader by its SPIR-V file name ("sphere.tesc.spv"): a plugin's (addSpirv) or from shaderDir().
+vk::Unique<VkShaderModule> loadShaderModule(Context& ctx, const std::string& name);
+// LODBENCH_SHADER_DIR where set; else share/lodbench/spirv beside an installed binary's bin/; else
+// the build's directory.
+std::string shaderDir();
+// SPIR-V that lives in a plugin's library, not in shaderDir(), under the name loadShaderModule is
+// asked for. Called while plugins load, before any renderer exists. Throws on a name taken twice.
+void addSpirv(const std::string& name, const unsigned char* bytes, size_t size);
+// The name is a plugin's shader or a file in shaderDir().
+bool spirvExists(const std::string& name);
 
 }  // namespace lb
