@@ -21,6 +21,7 @@ const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
+const Scheme& uniformCullScheme();
 
 static std::vector<const Scheme*>& registered() {
   static std::vector<const Scheme*> schemes = {
@@ -42,6 +43,7 @@ static std::vector<const Scheme*>& registered() {
       &clipmapScheme(),
       &cbtScheme(),
       &cbtTsScheme(),
+      &uniformCullScheme(),
       // clang-format on
   };
   return schemes;
