@@ -19,4 +19,8 @@
 //       kNode >= 0: explicit morph factors, kNode inside and b = (west, south, east, north) on the
 //       quadrant's edges (x = 0, z = 0, x = side, z = side).
 #define LB_CDLOD_SIDE_SHIFT 32.0
+
+// cdlod-ms (schemes/cdlod_ms.cpp): a quadrant's grid in mesh workgroups of at most this many cells
+// a side: 81 vertices and 128 triangles, within every device's 256 and 256.
+#define LB_CDLOD_MS_BLOCK 8
 #endif

@@ -15,6 +15,7 @@
 #define LB_BINDING_MESH 10         // measurement pass: captured triangles of the instanced path (analytic cracks)
 #define LB_BINDING_LOD_STATE 11    // GPU-indirect path: the LOD state the compute passes keep across frames
 #define LB_BINDING_LOD_ARGS 12     // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
+#define LB_BINDING_MESH_TABLE 13   // mesh path: the tessellation patterns' strip table (tess_piece.h)
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8      // floats per patch in the capture buffer
@@ -30,6 +31,11 @@
 #define LB_MODE_HISTOGRAM 4
 #define LB_MODE_DEPTH 5
 #define LB_MODE_FRONTEND 6
+
+// Mesh path: the records (patches, selected nodes) one task workgroup reads, one an invocation;
+// the NVIDIA H100's preferred task and mesh workgroup size (maxPreferred*WorkGroupInvocations).
+#define LB_MESH_TASK_RECORDS 32
+#define LB_MESH_THREADS 32
 
 // Push-constant blocks must fit the smallest maxPushConstantsSize Vulkan guarantees.
 #define LB_PUSH_CONSTANT_LIMIT 128
@@ -71,9 +77,10 @@ static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME
 // Each push-constant mirror is pinned to its GLSL block's size (std430, as push constants are
 // laid out); tests/test_push_constants.cpp reads the same sizes back from the compiled SPIR-V.
 struct DrawPush {
-  uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw
+  uint32_t firstPatch;  // gl_PrimitiveID restarts at every split draw; mesh path: the draw's first record
+  uint32_t count;       // mesh path: the records from firstPatch on that the draw's task shader reads
 };
-static_assert(sizeof(DrawPush) == 4 && sizeof(DrawPush) <= LB_PUSH_CONSTANT_LIMIT, "push constant mirror");
+static_assert(sizeof(DrawPush) == 8 && sizeof(DrawPush) <= LB_PUSH_CONSTANT_LIMIT, "push constant mirror");
 // Push constants of a scheme's compute preprocessing pass (shaders/*.comp define LB_COMPUTE_PASS).
 struct ComputePush {
   glm::vec4 terrain;                        // extent, grid patches per side, heightfield min height, max height
@@ -104,6 +111,7 @@ layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
 frame;
 layout(push_constant) uniform DrawPush {
   uint firstPatch;
+  uint count;
 }
 draw;
 #endif

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "random.h"
 #include "schemes/preprocess/tess_patterns.h"
@@ -326,4 +327,126 @@ TEST(TessPatterns, StripTableIsCompact) {
   EXPECT_EQ(stripSteps(3, 3), 0b010101u);
   EXPECT_EQ(stripSteps(4, 0), 0b1111u);
   EXPECT_EQ(stripSteps(0, 4), 0u);
+}
+
+// The mesh shader's parallel form of the patterns (shaders/tess_piece.h: any vertex and any
+// triangle of a piece from its index): the same split, and in every piece the generator's triangles
+// in the generator's order, as points; empty where the generator leaves a piece out. And the most
+// vertices and triangles a piece emits in that layout, over every factor combination: the
+// constants the mesh shader declares as its outputs.
+#define LB_TESS_STEPS(p, q) lb::stripSteps(p, q)
+#define LB_TESS_BITCOUNT(x) __builtin_popcount(unsigned(x))
+#include "shaders/tess_piece.h"
+
+namespace {
+
+using Point = std::pair<uint32_t, uint32_t>;  // bits of u, v
+
+float fracValue(int num, int den) {  // as the mesh shader turns a fraction into a float
+  return num == 0 ? 0.0f : num == den ? 1.0f : float(num) / float(den);
+}
+
+std::string pieceProblems(const TessFactors& f) {
+  using namespace lb::tesspiece;
+  const TessPattern p = tessellateQuad(f);
+  const TessPatch t = tessPatch(f.outer[0], f.outer[1], f.outer[2], f.outer[3], f.inner[0], f.inner[1]);
+  if (t.k0 != p.columns || t.k1 != p.rows)
+    return str(f) + ": split " + std::to_string(t.k0) + " x " + std::to_string(t.k1) + ", generator " +
+           std::to_string(p.columns) + " x " + std::to_string(p.rows);
+  size_t next = 0;
+  for (int index = 0; index < tessPieces(t); ++index) {
+    const int x = index % t.k0, y = index / t.k0;
+    const TessPiece q = tessPiece(t, x, y);
+    const std::string where = str(f) + " piece " + std::to_string(x) + "," + std::to_string(y);
+    if (q.vertices > LB_TESS_MAX_VERTICES || q.triangles > LB_TESS_MAX_TRIANGLES) return where + ": too large";
+    const bool listed = next < p.subPatches.size() && p.subPatches[next].column == x && p.subPatches[next].row == y;
+    if (!listed) {
+      if (q.triangles != 0) return where + ": triangles where the generator has none";
+      continue;
+    }
+    const TessSubPatch& s = p.subPatches[next++];
+    if (size_t(q.triangles) != s.triangles.size())
+      return where + ": " + std::to_string(q.triangles) + " triangles, generator " + std::to_string(s.triangles.size());
+    std::vector<Point> mine;
+    for (int i = 0; i < q.vertices; ++i) {
+      const TessFrac v = tessVertex(t, q, i);
+      mine.push_back({bits(fracValue(v.un, v.ud)), bits(fracValue(v.vn, v.vd))});
+    }
+    for (size_t k = 0; k < s.triangles.size(); ++k) {
+      const TessTri tri = tessTriangle(t, q, int(k));
+      for (int c : {tri.a, tri.b, tri.c})
+        if (c < 0 || c >= q.vertices) return where + ": index out of the piece";
+      const int got[3] = {tri.a, tri.b, tri.c};
+      for (int c = 0; c < 3; ++c) {
+        const TessVertex& w = s.vertices[s.triangles[k][size_t(c)]];
+        if (mine[size_t(got[c])] != Point{bits(w.u.value()), bits(w.v.value())})
+          return where + ": triangle " + std::to_string(k) + " differs";
+      }
+    }
+  }
+  return next == p.subPatches.size() ? "" : str(f) + ": the generator has pieces past the split";
+}
+
+}  // namespace
+
+TEST(TessPatterns, MeshShaderPieceLayoutIsTheGenerators) {
+  for (int a = 1; a <= kC; ++a)
+    for (int b = 1; b <= kC; ++b)
+      for (int c = 1; c <= kC; ++c)
+        for (int d = 1; d <= kC; ++d) ASSERT_EQ(pieceProblems(sphereFactors(a, b, c, d)), "");
+  for (int m0 = 0; m0 <= kC; ++m0)
+    for (int m1 = 0; m1 <= kC; ++m1)
+      for (int n = 1; n <= kTessMaxFactor; ++n) ASSERT_EQ(pieceProblems({{n, n, n, n}, {m0, m1}}), "");
+  const int kValues[] = {1, 2, 3, 10, 11, 12, 13, 22, 23, 24, 37, 63, 64};
+  for (int s : kValues)
+    for (int t : kValues) {
+      ASSERT_EQ(pieceProblems(sphereFactors(s, t, s % 64 + 1, (t * 5) % 64 + 1)), "");
+      ASSERT_EQ(pieceProblems({{s, t, (s * 7) % 64 + 1, t}, {t, s}}), "");
+      ASSERT_EQ(pieceProblems({{1, 64, 1, 64}, {s, t}}), "");
+    }
+  SplitMix64 rng{23};
+  for (int trial = 0; trial < 2000; ++trial) {
+    TessFactors f;
+    for (int& n : f.outer) n = 1 + int(rng.below(kTessMaxFactor));
+    for (int& m : f.inner) m = int(rng.below(kTessMaxFactor + 1));
+    ASSERT_EQ(pieceProblems(f), "");
+  }
+}
+
+// A piece's vertices are its block plus each touched edge's points: the block and the horizontal
+// edges' points follow from the factors along u (inner along u, edges v=0 and v=1) and the piece's
+// column, the rest from those along v and its row. Every column of every factor triple along u,
+// against every row of every triple along v, bounds the whole space of 65^2 x 64^4 combinations.
+TEST(TessPatterns, MeshShaderOutputsBoundEveryPiece) {
+  struct Side {
+    int span, firstEdge, lastEdge;  // grid points across the block; edge points of the first and last strip
+    bool first, last;
+    bool operator<(const Side& o) const {
+      return std::tie(span, firstEdge, lastEdge, first, last) <
+             std::tie(o.span, o.firstEdge, o.lastEdge, o.first, o.last);
+    }
+  };
+  std::set<Side> sides;
+  for (int inner = 0; inner <= kTessMaxFactor; ++inner)
+    for (int lo = 1; lo <= kTessMaxFactor; ++lo)
+      for (int hi = 1; hi <= kTessMaxFactor; ++hi) {
+        // Along u: inner m0, edge v=0 (n1) and edge v=1 (n3); the same arithmetic serves v.
+        const lb::tesspiece::TessPatch t = lb::tesspiece::tessPatch(2, lo, 2, hi, inner, 2);
+        for (int x = 0; x < t.k0; ++x) {
+          const int a0 = lb::tesspiece::tessRing(t.m0, t.k0, x), a1 = lb::tesspiece::tessRing(t.m0, t.k0, x + 1);
+          const int e1 = lb::tesspiece::tessAt(lo, t.k0, x + 1) - lb::tesspiece::tessAt(lo, t.k0, x);
+          const int e3 = lb::tesspiece::tessAt(hi, t.k0, x + 1) - lb::tesspiece::tessAt(hi, t.k0, x);
+          sides.insert({a1 - a0 + 1, e1 + 1, e3 + 1, x == 0, x == t.k0 - 1});
+        }
+      }
+  int most = 0;
+  for (const Side& u : sides)
+    for (const Side& v : sides)
+      most = std::max(most, u.span * v.span + (v.first ? u.firstEdge : 0) + (v.last ? u.lastEdge : 0) +
+                                (u.first ? v.firstEdge : 0) + (u.last ? v.lastEdge : 0));
+  EXPECT_EQ(most, LB_TESS_MAX_VERTICES) << "the declared outputs are the bound";
+  EXPECT_LE(LB_TESS_MAX_VERTICES, kMeshMinOutputVertices);
+  EXPECT_EQ(LB_TESS_MAX_TRIANGLES, kPieceTriangles) << "the triangles are the generator's";
+  std::printf("[TessPatterns] the mesh shader's pieces: at most %d vertices (declared %d)\n", most,
+              LB_TESS_MAX_VERTICES);
 }

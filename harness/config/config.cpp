@@ -202,8 +202,7 @@ static void parseTune(const ConfigReader& r, const Scheme& scheme, const json& t
         if (p.name != info.mainParam) names.push_back(p.name);
       r.fail(at, "'" + printable(k) + "' is neither grid nor a parameter of " + info.name + didYouMean(k, names));
     }
-    if (k == "grid" && info.path != DrawPath::Tessellation)
-      r.fail(at, info.name + " draws no patch grid: grid does not change it");
+    if (k == "grid" && !drawsPatchGrid(info)) r.fail(at, info.name + " draws no patch grid: grid does not change it");
     if (!v.is_array() || v.empty()) r.fail(at, "expected a non-empty list of values");
     std::vector<double> values;
     for (size_t i = 0; i < v.size(); ++i) {

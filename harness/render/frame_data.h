@@ -52,6 +52,9 @@ struct PipelineStats {
   uint64_t iaVertices = 0, iaPrimitives = 0, vsInvocations = 0;
   uint64_t tcsPatches = 0, tesInvocations = 0;
   uint64_t clipInvocations = 0, clipPrimitives = 0, fsInvocations = 0;
+  // Mesh-shader paths (where the device counts them: meshShaderQueries): task and mesh shader
+  // invocations. Those frames count no input assembly, vertex or tessellation work.
+  uint64_t taskInvocations = 0, meshInvocations = 0;
 };
 
 struct FrameResult {

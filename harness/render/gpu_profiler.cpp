@@ -2,6 +2,7 @@
 #include "render/gpu_profiler.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "vk/context.h"
@@ -53,7 +54,8 @@ double PassTimer::ms() {
   return double((ts[1] - ts[0]) & mask_) * double(ctx_.props.limits.timestampPeriod) * 1e-6;
 }
 
-GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx), lodWritten_(size_t(slots), false) {
+GpuProfiler::GpuProfiler(Context& ctx, int slots)
+    : ctx_(ctx), lodWritten_(size_t(slots), false), meshWatched_(size_t(slots), false) {
   mask_ = queueTimestampMask(ctx);
   periodNs_ = double(ctx.props.limits.timestampPeriod);
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -74,12 +76,24 @@ GpuProfiler::GpuProfiler(Context& ctx, int slots) : ctx_(ctx), lodWritten_(size_
                           VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
   VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &pool));
   stats_ = vk::Unique(ctx_.device, pool);
+  if (ctx.meshShader) {
+    qi.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |
+                            VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
+                            VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+    if (ctx.meshShaderQueries)
+      qi.pipelineStatistics |= VK_QUERY_PIPELINE_STATISTIC_TASK_SHADER_INVOCATIONS_BIT_EXT |
+                               VK_QUERY_PIPELINE_STATISTIC_MESH_SHADER_INVOCATIONS_BIT_EXT;
+    VK_CHECK(vkCreateQueryPool(ctx_.device, &qi, nullptr, &pool));
+    meshStats_ = vk::Unique(ctx_.device, pool);
+  }
 }
 
 void GpuProfiler::reset(VkCommandBuffer cmd, int slot) {
   vkCmdResetQueryPool(cmd, timestamps_, uint32_t(slot) * kTimestampsPerSlot, kTimestampsPerSlot);
   vkCmdResetQueryPool(cmd, stats_, uint32_t(slot), 1);
+  if (meshStats_) vkCmdResetQueryPool(cmd, meshStats_, uint32_t(slot), 1);
   lodWritten_[size_t(slot)] = false;
+  meshWatched_[size_t(slot)] = false;
 }
 
 void GpuProfiler::timestampLod(VkCommandBuffer cmd, int slot) {
@@ -98,11 +112,13 @@ void GpuProfiler::timestampBottom(VkCommandBuffer cmd, int slot) {
                        uint32_t(slot) * kTimestampsPerSlot + kQueryBottom);
 }
 
-void GpuProfiler::beginStats(VkCommandBuffer cmd, int slot) {
-  vkCmdBeginQuery(cmd, stats_, uint32_t(slot), 0);
+void GpuProfiler::beginStats(VkCommandBuffer cmd, int slot, bool meshStages) {
+  if (meshStages && !meshStats_) throw std::logic_error("GpuProfiler: mesh-shader draws on a device without them");
+  meshWatched_[size_t(slot)] = meshStages;
+  vkCmdBeginQuery(cmd, meshStages ? meshStats_ : stats_, uint32_t(slot), 0);
 }
 void GpuProfiler::endStats(VkCommandBuffer cmd, int slot) {
-  vkCmdEndQuery(cmd, stats_, uint32_t(slot));
+  vkCmdEndQuery(cmd, meshWatched_[size_t(slot)] ? meshStats_ : stats_, uint32_t(slot));
 }
 
 GpuSample GpuProfiler::read(int slot) {
@@ -111,10 +127,23 @@ GpuSample GpuProfiler::read(int slot) {
   uint64_t ts[kTimestampsPerSlot] = {};
   VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, uint32_t(slot) * kTimestampsPerSlot, n, n * sizeof(uint64_t),
                                  ts, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  uint64_t st[8];
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(slot), 1, sizeof st, st, sizeof st,
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   GpuSample s;
+  if (meshWatched_[size_t(slot)]) {
+    // In the order of the statistic bits: clipping (0x20, 0x40), FS (0x80), task (0x800), mesh (0x1000).
+    uint64_t ms[5] = {};
+    const uint32_t n = ctx_.meshShaderQueries ? 5 : 3;
+    VK_CHECK(vkGetQueryPoolResults(ctx_.device, meshStats_, uint32_t(slot), 1, n * sizeof(uint64_t), ms,
+                                   n * sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    s.stats.clipInvocations = ms[0];
+    s.stats.clipPrimitives = ms[1];
+    s.stats.fsInvocations = ms[2];
+    s.stats.taskInvocations = ms[3];
+    s.stats.meshInvocations = ms[4];
+  }
+  uint64_t st[8] = {};
+  if (!meshWatched_[size_t(slot)])
+    VK_CHECK(vkGetQueryPoolResults(ctx_.device, stats_, uint32_t(slot), 1, sizeof st, st, sizeof st,
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   s.gpuMs = double((ts[kQueryBottom] - ts[kQueryTop]) & mask_) * periodNs_ * 1e-6;
   if (n == kTimestampsPerSlot) {
     s.lodMs = double((ts[kQueryLod] - ts[kQueryTop]) & mask_) * periodNs_ * 1e-6;
@@ -122,6 +151,7 @@ GpuSample GpuProfiler::read(int slot) {
   }
   // Results come in the order of the statistic bits: IA, VS, clipping (0x20, 0x40), FS (0x80),
   // then tessellation control (0x100) and evaluation (0x200).
+  if (meshWatched_[size_t(slot)]) return s;
   s.stats.iaVertices = st[0];
   s.stats.iaPrimitives = st[1];
   s.stats.vsInvocations = st[2];

@@ -34,7 +34,9 @@ class GpuProfiler {
   void timestampBottom(VkCommandBuffer cmd, int slot);
   // Between the LOD work and the draws (draw paths whose LOD runs apart from drawing).
   void timestampLod(VkCommandBuffer cmd, int slot);
-  void beginStats(VkCommandBuffer cmd, int slot);
+  // `meshStages`: the draws run task and mesh shaders, which a query counting input assembly,
+  // vertex or tessellation work must not watch; they get a query of their own statistics.
+  void beginStats(VkCommandBuffer cmd, int slot, bool meshStages = false);
   void endStats(VkCommandBuffer cmd, int slot);
   // After the slot's fence: waits for its results (they are available by then).
   GpuSample read(int slot);
@@ -42,9 +44,11 @@ class GpuProfiler {
  private:
   Context& ctx_;
   vk::Unique<VkQueryPool> timestamps_, stats_;
-  uint64_t mask_ = 0;  // the bits the queue's timestamps carry (timestampValidBits; 0: none)
+  vk::Unique<VkQueryPool> meshStats_;  // where the device has mesh shaders: clipping, fragments, task and mesh
+  uint64_t mask_ = 0;                  // the bits the queue's timestamps carry (timestampValidBits; 0: none)
   double periodNs_ = 0;
   std::vector<bool> lodWritten_;
+  std::vector<bool> meshWatched_;  // per slot: its statistics are in meshStats_
 };
 
 // Timestamp mask from a queue family's timestampValidBits (64 -> all bits, 0 -> none).

@@ -109,6 +109,10 @@ struct GpuLod {
   uint32_t treeFirstWord = 0, treeWordCount = 0;
   // What the state's size follows from (a tree's depth, its bytes), recorded with the case.
   std::vector<std::pair<std::string, double>> facts;
+  // A mesh path's draw (DrawPath::Mesh): the state word of the VkDrawMeshTasksIndirectCommandEXT the
+  // passes leave, each task workgroup taking up to meshTaskRecords instance records; -1: none.
+  int64_t meshTasksWord = -1;
+  uint32_t meshTaskRecords = 0;
 };
 
 // Finest lattice cell of a terrain of width x height samples at `cellsPerTexel` cells per sample

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "render/instance_upload.h"
 #include "render/path_drawer.h"
 #include "shaders/shared.h"
 #include "vk/resources.h"
@@ -16,8 +17,7 @@ namespace {
 
 class InstancedGridDrawer : public PathDrawer {
  public:
-  explicit InstancedGridDrawer(const PathEnv& env)
-      : env_(env), instFirst_(size_t(env.slots)), instCount_(size_t(env.slots)) {
+  explicit InstancedGridDrawer(const PathEnv& env) : env_(env), upload_(env) {
     const std::string& name = env.scheme.info().name;
     lod_ = env.scheme.instancedLod(env.terrain, env.params);
     if (!lod_) throw std::logic_error("scheme '" + name + "' is instanced but supplies no InstancedLod");
@@ -48,7 +48,7 @@ class InstancedGridDrawer : public PathDrawer {
   }
   PathBuffers buffers() const override {
     PathBuffers b;
-    b.instances = instances_.buffer ? &instances_ : nullptr;
+    b.instances = upload_.buffer();
     return b;
   }
 
@@ -59,33 +59,11 @@ class InstancedGridDrawer : public PathDrawer {
       throw std::logic_error("scheme '" + env_.scheme.info().name + "' selected instances for " +
                              std::to_string(selection_.instances.size()) + " footprints, it has " +
                              std::to_string(ranges_.size()));
-    const size_t total = selection_.instanceCount();
-    if (total > capacity_) {
-      // Frames in flight read the old buffer: wait for them (rare: the capacity only grows).
-      env_.finish();
-      capacity_ = uint32_t(std::max<size_t>(256, total + total / 2));
-      instances_ = createBuffer(env_.ctx, VkDeviceSize(sizeof(InstanceRecord)) * capacity_ * VkDeviceSize(env_.slots),
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-      env_.rebind();
-    }
     // Each slot owns a region; draws reach it through firstInstance, which gl_InstanceIndex includes.
-    auto* out = static_cast<InstanceRecord*>(instances_.mapped) + size_t(slot) * capacity_;
-    std::vector<uint32_t>& first = instFirst_[size_t(slot)];
-    std::vector<uint32_t>& count = instCount_[size_t(slot)];
-    first.assign(ranges_.size(), 0);
-    count.assign(ranges_.size(), 0);
-    uint32_t next = uint32_t(slot) * capacity_;
+    upload_.upload(slot, selection_);
     uint64_t triangles = 0;
-    for (size_t f = 0; f < ranges_.size(); ++f) {
-      const auto& records = selection_.instances[f];
-      if (!records.empty())  // an empty vector's data() may be null, which memcpy must not get
-        std::memcpy(out, records.data(), records.size() * sizeof(InstanceRecord));
-      out += records.size();
-      first[f] = next;
-      count[f] = uint32_t(records.size());
-      next += uint32_t(records.size());
-      triangles += uint64_t(records.size()) * (ranges_[f].indexCount / 3);
-    }
+    for (size_t f = 0; f < ranges_.size(); ++f)
+      triangles += uint64_t(selection_.instances[f].size()) * (ranges_[f].indexCount / 3);
     return triangles;
   }
 
@@ -103,9 +81,9 @@ class InstancedGridDrawer : public PathDrawer {
 
   void collect(int slot, double prepareMs, FrameResult& r) const override {
     r.lodCpuMs = prepareMs;
-    for (uint32_t n : instCount_[size_t(slot)]) {
-      r.instances += n;
-      r.draws += n > 0 ? 1 : 0;
+    for (size_t f = 0; f < upload_.footprints(slot); ++f) {
+      r.instances += upload_.count(slot, f);
+      r.draws += upload_.count(slot, f) > 0 ? 1 : 0;
     }
   }
   const Selection* selection() const override { return &selection_; }
@@ -113,12 +91,12 @@ class InstancedGridDrawer : public PathDrawer {
  private:
   // share < 0: every instance.
   void drawShare(VkCommandBuffer cmd, int slot, double share) const {
-    const std::vector<uint32_t>& first = instFirst_[size_t(slot)];
-    const std::vector<uint32_t>& count = instCount_[size_t(slot)];
     for (size_t f = 0; f < ranges_.size(); ++f) {
-      const uint32_t n = share < 0 ? count[f] : uint32_t(std::floor(count[f] * share));
+      const uint32_t count = upload_.count(slot, f);
+      const uint32_t n = share < 0 ? count : uint32_t(std::floor(count * share));
       if (n > 0)
-        vkCmdDrawIndexed(cmd, ranges_[f].indexCount, n, ranges_[f].firstIndex, ranges_[f].vertexOffset, first[f]);
+        vkCmdDrawIndexed(cmd, ranges_[f].indexCount, n, ranges_[f].firstIndex, ranges_[f].vertexOffset,
+                         upload_.first(slot, f));
     }
   }
 
@@ -132,9 +110,7 @@ class InstancedGridDrawer : public PathDrawer {
   std::vector<FootprintRange> ranges_;
   Selection selection_;
   Buffer vertices_, indices_;
-  Buffer instances_;  // slots regions of capacity_ records, host-visible, written in prepare()
-  uint32_t capacity_ = 0;
-  std::vector<std::vector<uint32_t>> instFirst_, instCount_;  // per slot and footprint
+  InstanceUpload upload_;  // the selection's records, a region per slot, written in prepare()
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "render/path_drawer.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
+#include "vk/context.h"
 #include "vk/resources.h"
 
 namespace lb {
@@ -33,17 +34,7 @@ class PatchDrawer : public PathDrawer {
     const int grid = env.settings.grid;
     Topology topo = scheme.info().topology;
     controlPoints_ = controlPointCount(topo);
-    PatchGeometry g = scheme.patchGeometry(terrain, params, grid);
-    if (g.vertices.empty()) {
-      g.vertices = gridVertices(grid, terrain.extent);
-      g.indices = patchIndices(grid, topo);
-      g.bounds = patchHeightBounds(terrain, grid, topo);
-    }
-    // Schemes lay patches out terrain-locally; the terrain's origin moves them into the world, in
-    // double and then rounded to float, as an engine without camera-relative coordinates would.
-    if ((terrain.originX != 0.0 || terrain.originZ != 0.0) && !g.schemeUnits)
-      for (glm::vec2& v : g.vertices)
-        v = glm::vec2(float(double(v.x) + terrain.originX), float(double(v.y) + terrain.originZ));
+    PatchGeometry g = drawnPatches(scheme, params, terrain, grid);
     patchCount_ = uint32_t(g.indices.size() / controlPoints_);
     if (patchCount_ == 0 || g.indices.size() % controlPoints_ != 0 || g.bounds.size() != patchCount_)
       throw std::logic_error("scheme '" + scheme.info().name + "' supplied inconsistent patch geometry");
@@ -115,8 +106,7 @@ class PatchDrawer : public PathDrawer {
     for (uint32_t first = begin; first < end; first += patchesPerDraw_) {
       uint32_t count = std::min(patchesPerDraw_, end - first);
       DrawPush push{first};
-      vkCmdPushConstants(cmd, env_.bindings.pipelineLayout, VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT,
-                         0, sizeof push, &push);
+      vkCmdPushConstants(cmd, env_.bindings.pipelineLayout, layoutStages(env_.ctx), 0, sizeof push, &push);
       vkCmdDrawIndexed(cmd, count * controlPoints_, 1, first * controlPoints_, 0, 0);
     }
   }

@@ -47,6 +47,21 @@ std::vector<uint32_t> patchIndices(int n, Topology topology) {
   return idx;
 }
 
+PatchGeometry drawnPatches(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int n) {
+  const Topology topo = scheme.info().topology;
+  PatchGeometry g = scheme.patchGeometry(hf, params, n);
+  if (g.vertices.empty()) {
+    g.vertices = gridVertices(n, hf.extent);
+    g.indices = patchIndices(n, topo);
+    g.bounds = patchHeightBounds(hf, n, topo);
+  }
+  // Schemes lay patches out terrain-locally; the terrain's origin moves them into the world, in
+  // double and then rounded to float, as an engine without camera-relative coordinates would.
+  if ((hf.originX != 0.0 || hf.originZ != 0.0) && !g.schemeUnits)
+    for (glm::vec2& v : g.vertices) v = glm::vec2(float(double(v.x) + hf.originX), float(double(v.y) + hf.originZ));
+  return g;
+}
+
 std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology topology) {
   // Every patch renderer computes these (a tuned search builds dozens), and at 16385^2 a
   // single-threaded scan of every sample took about a second: patch rows run in parallel, each

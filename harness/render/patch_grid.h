@@ -17,6 +17,11 @@ std::vector<glm::vec2> gridVertices(int n, float extent);
 std::vector<uint32_t> patchIndices(int n, Topology topology);
 uint32_t controlPointCount(Topology topology);
 uint32_t patchCountFor(int n, Topology topology);
+// The patches a scheme draws on a base grid of n x n: its own patch geometry, else the uniform grid
+// of its topology with the height bounds, moved into the world by the terrain's origin (unless in
+// the scheme's own units). The tessellation path draws them; a mesh path that decides its LOD per
+// patch (render/mesh_drawer.cpp) reads the same corners and bounds.
+PatchGeometry drawnPatches(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int n);
 // Per patch (minHeight, maxHeight) over every heightfield sample the patch's bilinear surface touches.
 std::vector<glm::vec2> patchHeightBounds(const Heightfield& hf, int n, Topology topology);
 // (minHeight, maxHeight) over every sample the bilinear surface over the world rectangle [lo, hi] touches;

@@ -10,6 +10,8 @@ std::unique_ptr<PathDrawer> makePathDrawer(const PathEnv& env) {
       return makeInstancedGridDrawer(env);
     case DrawPath::GpuIndirect:
       return makeGpuIndirectDrawer(env);
+    case DrawPath::Mesh:
+      return makeMeshDrawer(env);
   }
   return nullptr;
 }

@@ -3,7 +3,8 @@
 // owns the targets, uniforms, pipelines by mode, queries and the ring of frames in flight and never
 // asks which path it runs; a PathDrawer owns what differs: its geometry and the buffers it binds,
 // its LOD work before the draws, the draws, and what a finished frame drew. One file per path
-// (patch_drawer.cpp, instanced_grid_drawer.cpp, gpu_indirect_drawer.cpp), one case in makePathDrawer.
+// (patch_drawer.cpp, instanced_grid_drawer.cpp, gpu_indirect_drawer.cpp, mesh_drawer.cpp), one case in
+// makePathDrawer.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -44,11 +45,14 @@ struct PathEnv {
 };
 
 // The stages before rasterization of every pipeline of a path (the frame core adds the fragment
-// and histogram stages by mode). No control shader: a triangle list.
+// and histogram stages by mode). No control shader: a triangle list. A mesh shader instead of a
+// vertex shader: task (optional) and mesh stages, no vertex input; such a path bins its histogram
+// and captures its mesh in the mesh shader, since a mesh pipeline has no geometry stage.
 struct GeometryStages {
   std::string vert, tesc, tese;  // SPIR-V file names; tesc is specialized with the level capture
+  std::string task, mesh;        // SPIR-V file names; task is specialized with the level capture
   uint32_t controlPoints = 4;
-  bool meshCapture = false;  // the histogram's geometry shader records the drawn mesh (LB_BINDING_MESH)
+  bool meshCapture = false;  // the histogram pass records the drawn mesh (LB_BINDING_MESH)
   // The stage whose storage writes a capture or histogram frame reads back on the host (besides
   // the geometry shader's, where the device has one).
   VkPipelineStageFlags2 storeStage = VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
@@ -59,6 +63,7 @@ struct GeometryStages {
 struct PathBuffers {
   const Buffer *bounds = nullptr, *capture = nullptr, *schemeBuf = nullptr;  // patches
   const Buffer *instances = nullptr, *lodState = nullptr, *lodArgs = nullptr;
+  const Buffer* meshTable = nullptr;  // mesh path: the patterns' strip table
 };
 
 class PathDrawer {
@@ -92,5 +97,7 @@ std::unique_ptr<PathDrawer> makePathDrawer(const PathEnv& env);
 std::unique_ptr<PathDrawer> makePatchDrawer(const PathEnv& env);
 std::unique_ptr<PathDrawer> makeInstancedGridDrawer(const PathEnv& env);
 std::unique_ptr<PathDrawer> makeGpuIndirectDrawer(const PathEnv& env);
+// Throws FeatureMissing where the device has no mesh shaders.
+std::unique_ptr<PathDrawer> makeMeshDrawer(const PathEnv& env);
 
 }  // namespace lb

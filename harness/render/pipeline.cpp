@@ -18,6 +18,9 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
     st.pSpecializationInfo = s.specialization;
     stages.push_back(st);
   }
+  // A mesh pipeline reads no vertices: no vertex input or input assembly state.
+  bool mesh = false;
+  for (const ShaderStage& s : desc.stages) mesh = mesh || s.stage == VK_SHADER_STAGE_MESH_BIT_EXT;
   VkVertexInputBindingDescription vb{0, sizeof(float) * 2, VK_VERTEX_INPUT_RATE_VERTEX};
   VkVertexInputAttributeDescription va{0, 0, VK_FORMAT_R32G32_SFLOAT, 0};
   VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -62,9 +65,9 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
   VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &ri};
   gi.stageCount = uint32_t(stages.size());
   gi.pStages = stages.data();
-  gi.pVertexInputState = &vi;
-  gi.pInputAssemblyState = &ia;
-  gi.pTessellationState = desc.topology == VK_PRIMITIVE_TOPOLOGY_PATCH_LIST ? &ts : nullptr;
+  gi.pVertexInputState = mesh ? nullptr : &vi;
+  gi.pInputAssemblyState = mesh ? nullptr : &ia;
+  gi.pTessellationState = !mesh && desc.topology == VK_PRIMITIVE_TOPOLOGY_PATCH_LIST ? &ts : nullptr;
   gi.pViewportState = &vp;
   gi.pRasterizationState = &rs;
   gi.pMultisampleState = &ms;

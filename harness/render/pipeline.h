@@ -24,7 +24,8 @@ struct ShaderStage {
 struct TessPipelineDesc {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   std::vector<ShaderStage> stages;
-  // PATCH_LIST for the tessellation path (controlPoints per patch), TRIANGLE_LIST for the instanced one.
+  // PATCH_LIST for the tessellation path (controlPoints per patch), TRIANGLE_LIST for the instanced
+  // one; unused where a mesh stage makes the triangles (no vertex input either).
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   uint32_t controlPoints = 4;
   uint32_t width = 0, height = 0;  // viewport and scissor

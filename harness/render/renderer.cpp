@@ -53,7 +53,7 @@ void Renderer::prepareFrame(int slotIndex, const CameraPose& view, const CameraP
   Slot& slot = slots_[size_t(slotIndex)];
   const double start = nowMs();
   const uint64_t triangles = path_->prepare(slotIndex, u, slot.readback || captureMeshNext_);
-  if (captureMeshNext_) prepareMeshCapture(triangles);
+  if (captureMeshNext_) prepareMeshCapture(std::max(triangles, meshAtLeast_));
   slot.prepareMs = nowMs() - start;
 }
 
@@ -153,7 +153,7 @@ void Renderer::record(Slot& slot, int slotIndex, RenderMode mode, bool capture) 
   // A wireframe alone is a solid mesh of lines at small sizes: its lines are blended over the
   // shaded frame, drawn first (outside the statistics query, so the counters are one frame's).
   if (mode == RenderMode::Wireframe) drawAll(pipeline(RenderMode::Shaded, false));
-  profiler_.beginStats(cmd, slotIndex);
+  profiler_.beginStats(cmd, slotIndex, meshStages_);
   drawAll(pipe);
   profiler_.endStats(cmd, slotIndex);
   const bool timed = mode == RenderMode::Shaded && !capture && !slot.readback;
@@ -262,13 +262,21 @@ void Renderer::renderInto(const CameraPose& view, const CameraPose& lod, RenderM
 }
 
 TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
-  finish();
-  std::memset(histogram_.mapped, 0, size_t(histogram_.size));
-  captureMeshNext_ = path_ && path_->stages().meshCapture;
-  submitFrame(-1, view, lod, RenderMode::Histogram);
-  finish();
-  const bool mesh = captureMeshNext_;
-  captureMeshNext_ = false;
+  const bool mesh = path_ && path_->stages().meshCapture;
+  // A path whose GPU decides its triangles without a bound the host knows (a mesh path's task
+  // shader) may outgrow the capture: it then gets room for what it drew and draws once more.
+  for (int attempt = 0;; ++attempt) {
+    finish();
+    std::memset(histogram_.mapped, 0, size_t(histogram_.size));
+    captureMeshNext_ = mesh;
+    submitFrame(-1, view, lod, RenderMode::Histogram);
+    finish();
+    captureMeshNext_ = false;
+    const uint32_t drawn = mesh ? static_cast<const uint32_t*>(mesh_.mapped)[0] : 0;
+    if (attempt > 0 || drawn <= meshCapacity_) break;
+    meshAtLeast_ = drawn;
+    takeCompleted();
+  }
   capturedMesh_.clear();
   if (mesh) {
     const auto* head = static_cast<const uint32_t*>(mesh_.mapped);

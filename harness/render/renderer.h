@@ -138,10 +138,12 @@ class Renderer {
   double lastSubmitMs_ = -1;
   CullCamera cullCamera_ = CullCamera::Lod;
   std::unique_ptr<PathDrawer> path_;
-  std::array<Buffer, 6> placeholders_;  // for the PathBuffers a path leaves null
+  bool meshStages_ = false;             // the path's stages are task and mesh shaders (GeometryStages::mesh)
+  std::array<Buffer, 7> placeholders_;  // for the PathBuffers a path leaves null
   // The mesh capture of measurement passes (LB_BINDING_MESH): room for meshCapacity_ triangles.
   Buffer mesh_;
   uint32_t meshCapacity_ = 0;
+  uint64_t meshAtLeast_ = 0;  // triangles a histogram pass drew past the capture's room: the next one's least
   bool captureMeshNext_ = false;
   std::vector<glm::vec3> capturedMesh_;
 };

@@ -83,7 +83,7 @@ void Renderer::createTargets() {
 }
 
 void Renderer::createDescriptors() {
-  const VkShaderStageFlags all = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
+  const VkShaderStageFlags all = layoutStages(ctx_);
   bindings_ =
       createBindings(ctx_,
                      {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
@@ -97,7 +97,8 @@ void Renderer::createDescriptors() {
                       {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
                       {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
                       {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
+                      {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                      {LB_BINDING_MESH_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
                      all, sizeof(DrawPush));
 }
 
@@ -108,10 +109,10 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   params_ = resolveParams(scheme.info(), params);
   scheme.validate(params_);
   path_.reset();
-  for (Buffer* b : {&mesh_, &placeholders_[0], &placeholders_[1], &placeholders_[2], &placeholders_[3],
-                    &placeholders_[4], &placeholders_[5]})
-    *b = {};
+  mesh_ = {};
+  for (Buffer& b : placeholders_) b = {};
   meshCapacity_ = 0;
+  meshAtLeast_ = 0;
   PathEnv env{ctx_, terrain_, settings_, scheme, params_, bindings_, kSlots};
   env.finish = [this] { finish(); };
   env.rebind = [this] { bindPathBuffers(); };
@@ -119,7 +120,9 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     fillUniforms(nextSlot_, pose, pose);
     return UniformSlot{nextSlot_, uint32_t(uniformStride_ * VkDeviceSize(nextSlot_))};
   };
+  meshStages_ = false;
   path_ = makePathDrawer(env);
+  meshStages_ = !path_->stages().mesh.empty();
   schemeTex_ = {};
   const auto tPreprocess = std::chrono::steady_clock::now();
   // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
@@ -202,19 +205,17 @@ void Renderer::bindPathBuffers() {
     std::memset(mesh_.mapped, 0, size_t(mesh_.size));
   }
   const PathBuffers own = path_->buffers();
-  const Buffer* buffers[7] = {&placeholder(0, own.bounds),
-                              &placeholder(1, own.capture),
-                              &placeholder(2, own.schemeBuf),
-                              &placeholder(3, own.instances),
-                              &placeholder(4, own.lodState),
-                              &placeholder(5, own.lodArgs),
-                              &mesh_};
-  const uint32_t targets[7] = {LB_BINDING_PATCH_BOUNDS, LB_BINDING_CAPTURE,   LB_BINDING_SCHEME_BUF,
-                               LB_BINDING_INSTANCES,    LB_BINDING_LOD_STATE, LB_BINDING_LOD_ARGS,
-                               LB_BINDING_MESH};
-  VkDescriptorBufferInfo infos[7];
-  VkWriteDescriptorSet w[7];
-  for (int i = 0; i < 7; ++i) {
+  constexpr int kBuffers = 8;
+  const Buffer* buffers[kBuffers] = {&placeholder(0, own.bounds),    &placeholder(1, own.capture),
+                                     &placeholder(2, own.schemeBuf), &placeholder(3, own.instances),
+                                     &placeholder(4, own.lodState),  &placeholder(5, own.lodArgs),
+                                     &placeholder(6, own.meshTable), &mesh_};
+  const uint32_t targets[kBuffers] = {LB_BINDING_PATCH_BOUNDS, LB_BINDING_CAPTURE,   LB_BINDING_SCHEME_BUF,
+                                      LB_BINDING_INSTANCES,    LB_BINDING_LOD_STATE, LB_BINDING_LOD_ARGS,
+                                      LB_BINDING_MESH_TABLE,   LB_BINDING_MESH};
+  VkDescriptorBufferInfo infos[kBuffers];
+  VkWriteDescriptorSet w[kBuffers];
+  for (int i = 0; i < kBuffers; ++i) {
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     w[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w[i].dstSet = bindings_.set;
@@ -223,7 +224,7 @@ void Renderer::bindPathBuffers() {
     w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     w[i].pBufferInfo = &infos[i];
   }
-  vkUpdateDescriptorSets(ctx_.device, 7, w, 0, nullptr);
+  vkUpdateDescriptorSets(ctx_.device, kBuffers, w, 0, nullptr);
 }
 
 VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
@@ -233,7 +234,9 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   if (mode == RenderMode::Wireframe && !ctx_.enabledFeatures.fillModeNonSolid)
     throw FeatureMissing("device lacks fillModeNonSolid: wireframe images are unavailable");
   bool histogram = mode == RenderMode::Histogram;
-  if (histogram && !ctx_.enabledFeatures.geometryShader)
+  // A mesh stage bins its own triangles; the other paths bin them in a geometry shader.
+  const bool meshStages = !g.mesh.empty();
+  if (histogram && !meshStages && !ctx_.enabledFeatures.geometryShader)
     throw FeatureMissing("device lacks geometryShader: triangle-size histograms are unavailable");
   if (capture && !ctx_.enabledFeatures.vertexPipelineStoresAndAtomics)
     throw FeatureMissing("device lacks vertexPipelineStoresAndAtomics: tessellation factors cannot be captured");
@@ -255,18 +258,30 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
                                              {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)}};
   VkSpecializationInfo modeSpec{2, fragEntries, sizeof(FragSpec), &fragValues};
   VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
+  // A mesh stage's histogram pass: constant 3 bins, constant 2 captures the mesh (as the geometry shader's).
+  struct MeshSpec {
+    VkBool32 capture, histogram;
+  } meshStageValues{histogram && g.meshCapture, histogram};
+  VkSpecializationMapEntry meshStageEntries[2] = {{2, offsetof(MeshSpec, capture), sizeof(VkBool32)},
+                                                  {3, offsetof(MeshSpec, histogram), sizeof(VkBool32)}};
+  VkSpecializationInfo meshStageSpec{2, meshStageEntries, sizeof(MeshSpec), &meshStageValues};
 
   TessPipelineDesc d;
   d.layout = bindings_.pipelineLayout;
-  d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, g.vert}};
-  if (g.tesc.empty()) {
-    d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  if (meshStages) {
+    if (!g.task.empty()) d.stages.push_back({VK_SHADER_STAGE_TASK_BIT_EXT, g.task, &captureSpec});
+    d.stages.push_back({VK_SHADER_STAGE_MESH_BIT_EXT, g.mesh, &meshStageSpec});
   } else {
-    d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, g.tesc, &captureSpec});
-    d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, g.tese});
+    d.stages = {{VK_SHADER_STAGE_VERTEX_BIT, g.vert}};
+    if (g.tesc.empty()) {
+      d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    } else {
+      d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, g.tesc, &captureSpec});
+      d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, g.tese});
+    }
   }
   if (colour) d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, "terrain.frag.spv", &modeSpec});
-  if (histogram)
+  if (histogram && !meshStages)
     d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", g.meshCapture ? &meshSpec : nullptr});
   d.controlPoints = g.controlPoints;
   d.width = uint32_t(settings_.width);

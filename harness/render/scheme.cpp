@@ -81,6 +81,10 @@ const char* partitioningName(Partitioning p) {
   return "?";
 }
 
+bool drawsPatchGrid(const SchemeInfo& info) {
+  return info.path == DrawPath::Tessellation || (info.path == DrawPath::Mesh && info.meshLod == DrawPath::Tessellation);
+}
+
 const char* topologyName(Topology t) {
   switch (t) {
     case Topology::Quad4:

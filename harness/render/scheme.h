@@ -19,7 +19,10 @@ enum class Topology { Quad4, Quad12, Tri3 };
 // base grid through the scheme's control shader. InstancedGrid: CPU-selected instances of a few
 // index meshes (render/instanced.h) through the scheme's vertex shader. GpuIndirect: instances and
 // draw arguments written by the scheme's compute passes on the GPU (GpuLod), drawn indirectly.
-enum class DrawPath { Tessellation, InstancedGrid, GpuIndirect };
+// Mesh: task and mesh shaders (VK_EXT_mesh_shader, where the device has it) amplify the LOD of
+// one of the other three paths (SchemeInfo::meshLod), so a scheme and its mesh twin differ only in
+// how their triangles are made.
+enum class DrawPath { Tessellation, InstancedGrid, GpuIndirect, Mesh };
 enum class Partitioning { Integer, FractionalEven, FractionalOdd };
 
 struct ParamSpec {
@@ -156,6 +159,9 @@ class Scheme {
   // DrawPath::GpuIndirect: the footprint, the initial LOD state and the compute passes; the records'
   // capacity may follow from the view budget and must stay within the device's limits (`budget`).
   virtual GpuLod gpuLod(const Heightfield&, const ParamValues&, const GpuLodBudget& /*budget*/) const { return {}; }
+  // DrawPath::Mesh: the words its mesh shader reads at LB_BINDING_MESH_TABLE (sphere-ms: the
+  // tessellation patterns' strip table); empty = none.
+  virtual std::vector<uint32_t> meshTable() const { return {}; }
 };
 
 // Fills defaults, rejects unknown names and out-of-range values with a message naming them.
@@ -166,6 +172,9 @@ void requireOrdered(const std::string& scheme, const ParamValues& values, const 
 // A one-channel preprocessing texture holding `red` (moved in, not copied).
 SchemeTexture redTexture(int width, int height, std::vector<float> red);
 const char* partitioningName(Partitioning p);
+// The scheme draws the renderer's patch grid (its `grid` setting matters): the tessellation path,
+// and a mesh path whose task shader decides the LOD per patch.
+bool drawsPatchGrid(const SchemeInfo& info);
 const char* topologyName(Topology t);
 
 }  // namespace lb

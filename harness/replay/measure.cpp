@@ -82,7 +82,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   std::vector<float> levels = r.capturedLevels();
   // The instanced path decides its LOD on the CPU: the scheme's own counts of this pose are those of
   // the selection just drawn, taken before another pass selects again.
-  const bool instanced = r.path() != DrawPath::Tessellation;  // instanced grid or GPU-indirect: no patches
+  // Instanced grid, GPU-indirect or mesh shaders: the drawn mesh, not patches, is checked for cracks.
+  const bool instanced = r.path() != DrawPath::Tessellation;
   const std::vector<double> selectionCounts =
       r.path() == DrawPath::InstancedGrid ? r.lastSelection().counters : std::vector<double>{};
   lap("render");

@@ -53,6 +53,8 @@ std::string compareTessellationCounters(const std::vector<FrameResult>& shaded, 
         {"vs_invocations", {a.vsInvocations, b.vsInvocations}},
         {"patches", {a.tcsPatches, b.tcsPatches}},
         {"tes_invocations", {a.tesInvocations, b.tesInvocations}},
+        {"task_invocations", {a.taskInvocations, b.taskInvocations}},
+        {"mesh_invocations", {a.meshInvocations, b.meshInvocations}},
         {"instances", {shaded[i].instances, other[i].instances}}};
     for (auto& [name, v] : counters)
       if (v.first != v.second)

@@ -24,6 +24,8 @@ const char* pathName(const std::string& scheme) {
       return "instanced grid";
     case DrawPath::GpuIndirect:
       return s->info().tesc.empty() ? "GPU-indirect" : "GPU-indirect, tessellated";
+    case DrawPath::Mesh:
+      return "mesh shaders";
   }
   return "?";
 }

@@ -282,6 +282,18 @@ void createContext(Context& ctx, const ContextOptions& options) {
     if (list.find("shaderFloat64") != std::string::npos) ctx.enabledFeatures.shaderFloat64 = VK_FALSE;
   }
 
+  // Mesh shaders where the device has them; never a reason to reject a device.
+  VkPhysicalDeviceMeshShaderFeaturesEXT mesh{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT};
+  ctx.meshLimits = meshShaderLimits(ctx.physicalDevice);
+  if (ctx.meshLimits.present) {
+    VkPhysicalDeviceFeatures2 haveMesh{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &mesh};
+    vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &haveMesh);
+    ctx.meshShader = mesh.taskShader && mesh.meshShader;
+    ctx.meshShaderQueries = ctx.meshShader && mesh.meshShaderQueries;
+  }
+  if (const char* off = std::getenv("LODBENCH_TEST_DISABLE"))
+    if (std::string(off).find("meshShader") != std::string::npos) ctx.meshShader = ctx.meshShaderQueries = false;
+
   ctx.queueFamily = uint32_t(graphicsQueueFamily(ctx.physicalDevice));
   float prio = 1.0f;
   VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -298,8 +310,31 @@ void createContext(Context& ctx, const ContextOptions& options) {
   di.queueCreateInfoCount = 1;
   di.pQueueCreateInfos = &qi;
   di.pEnabledFeatures = &ctx.enabledFeatures;
+  // Only the features the mesh path uses: the rest (multiview, primitive shading rate) stay off.
+  VkPhysicalDeviceMeshShaderFeaturesEXT meshOn{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT};
+  const char* meshExtension = VK_EXT_MESH_SHADER_EXTENSION_NAME;
+  if (ctx.meshShader) {
+    meshOn.taskShader = meshOn.meshShader = VK_TRUE;
+    meshOn.meshShaderQueries = ctx.meshShaderQueries;
+    f13.pNext = &meshOn;
+    di.enabledExtensionCount = 1;
+    di.ppEnabledExtensionNames = &meshExtension;
+  }
   VK_CHECK(vkCreateDevice(ctx.physicalDevice, &di, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+  if (ctx.meshShader) {
+    ctx.cmdDrawMeshTasks =
+        reinterpret_cast<PFN_vkCmdDrawMeshTasksEXT>(vkGetDeviceProcAddr(ctx.device, "vkCmdDrawMeshTasksEXT"));
+    ctx.cmdDrawMeshTasksIndirect = reinterpret_cast<PFN_vkCmdDrawMeshTasksIndirectEXT>(
+        vkGetDeviceProcAddr(ctx.device, "vkCmdDrawMeshTasksIndirectEXT"));
+    if (!ctx.cmdDrawMeshTasks || !ctx.cmdDrawMeshTasksIndirect) ctx.meshShader = ctx.meshShaderQueries = false;
+  }
+}
+
+VkShaderStageFlags layoutStages(const Context& ctx) {
+  VkShaderStageFlags s = VK_SHADER_STAGE_ALL_GRAPHICS | VK_SHADER_STAGE_COMPUTE_BIT;
+  if (ctx.meshShader) s |= VK_SHADER_STAGE_TASK_BIT_EXT | VK_SHADER_STAGE_MESH_BIT_EXT;
+  return s;
 }
 
 void destroyContext(Context& ctx) {

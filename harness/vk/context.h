@@ -43,6 +43,14 @@ struct Context {
   VkPhysicalDeviceMemoryProperties memProps{};
   VkPhysicalDeviceFeatures enabledFeatures{};
   bool drawIndirectCount = false;  // Vulkan 1.2 feature, enabled where the device has it
+  // VK_EXT_mesh_shader with its taskShader and meshShader features, enabled where the device has
+  // them (never required: a mesh-shader draw path is skipped without them), and meshShaderQueries
+  // (task and mesh invocations in pipeline statistics). The draw commands are the extension's, so
+  // they come from vkGetDeviceProcAddr (the loader exports core commands only).
+  bool meshShader = false, meshShaderQueries = false;
+  MeshShaderLimits meshLimits;
+  PFN_vkCmdDrawMeshTasksEXT cmdDrawMeshTasks = nullptr;
+  PFN_vkCmdDrawMeshTasksIndirectEXT cmdDrawMeshTasksIndirect = nullptr;
   std::string driverName, driverInfo;
   // VkPhysicalDeviceIDProperties, as vk/device_identity.h formats them: which board (two of one
   // model differ here) and which driver build.
@@ -63,6 +71,9 @@ void createContext(Context& ctx, const ContextOptions& options);
 // suitable device, std::runtime_error when validation is asked for and the layer is missing.
 void checkContextOptions(const ContextOptions& options);
 void destroyContext(Context& ctx);
+// The shader stages of the one pipeline layout every graphics and compute pipeline shares: all
+// graphics stages, compute, and task and mesh where the device enables them.
+VkShaderStageFlags layoutStages(const Context& ctx);
 // Lists devices and whether each is suitable (creates and destroys its own instance).
 std::vector<DeviceCandidate> listDevices();
 std::string apiVersionString(uint32_t v);

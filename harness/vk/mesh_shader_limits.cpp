@@ -22,6 +22,10 @@ MeshShaderLimits meshShaderLimits(VkPhysicalDevice pd) {
   m.maxWorkGroupInvocations = ms.maxMeshWorkGroupInvocations;
   m.maxPreferredWorkGroupInvocations = ms.maxPreferredMeshWorkGroupInvocations;
   m.maxTaskPayloadBytes = ms.maxTaskPayloadSize;
+  m.maxTaskWorkGroupCountX = ms.maxTaskWorkGroupCount[0];
+  m.maxTaskWorkGroupTotalCount = ms.maxTaskWorkGroupTotalCount;
+  m.maxMeshWorkGroupCountX = ms.maxMeshWorkGroupCount[0];
+  m.maxMeshWorkGroupTotalCount = ms.maxMeshWorkGroupTotalCount;
   return m;
 }
 

@@ -18,6 +18,10 @@ struct MeshShaderLimits {
   uint32_t maxWorkGroupInvocations = 0;  // maxMeshWorkGroupInvocations
   uint32_t maxPreferredWorkGroupInvocations = 0;  // maxPreferredMeshWorkGroupInvocations
   uint32_t maxTaskPayloadBytes = 0;               // maxTaskPayloadSize
+  // How many workgroups one draw may launch: task workgroups along x and in all (a draw's task
+  // grid), mesh workgroups one task workgroup may emit along x and in all.
+  uint32_t maxTaskWorkGroupCountX = 0, maxTaskWorkGroupTotalCount = 0;
+  uint32_t maxMeshWorkGroupCountX = 0, maxMeshWorkGroupTotalCount = 0;
 };
 
 MeshShaderLimits meshShaderLimits(VkPhysicalDevice pd);
