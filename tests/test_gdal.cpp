@@ -15,6 +15,7 @@
 #include "cli_run.h"
 #include "config/config.h"
 #include "error.h"
+#include "input_error.h"
 #include "terrain/gdal_loader.h"
 #include "terrain/heightfield.h"
 
@@ -23,7 +24,6 @@
 #include <ogr_srs_api.h>
 
 #include "dem_crop.h"
-#include "input_error.h"
 #include "results/write.h"
 #include "sha256.h"
 #include "terrain/generators.h"
