@@ -148,7 +148,7 @@ TEST_F(EnergyPass, LoopsThePathUntilTheWindowIsLongEnough) {
   Renderer r(gpu(), testTerrain(), {160, 90, 4});
   r.setScheme(*findScheme("uniform"), {{"level", 3}});
   TimingSpec spec;
-  spec.energyWindowS = 0.05;
+  spec.energyWindowS = 0.25;  // several path loops even where frames are slow (sanitizers, a loaded machine)
   spec.energyRounds = 3;
   const double watts = 20, tickS = 0.010;
   StandInEnergyCounter counter(tickS, watts);
@@ -157,7 +157,7 @@ TEST_F(EnergyPass, LoopsThePathUntilTheWindowIsLongEnough) {
   ASSERT_EQ(e.rounds.size(), 3u);
   EXPECT_EQ(e.pathFrames, 3);
   for (const EnergyRound& k : e.rounds) {
-    EXPECT_GE(k.seconds, 0.05);
+    EXPECT_GE(k.seconds, 0.25);
     EXPECT_GT(k.frames, 3) << "the path looped";
     const double known = watts * k.seconds / double(k.frames);
     // Within the tick quantisation (a window's ends are seen a frame or so after their ticks).
