@@ -84,9 +84,11 @@ LB_TESS_FN TessPatch tessPatch(int n0, int n1, int n2, int n3, int i0, int i1) {
     t.m1 = tessMaxI(t.m1, 2);
   }
   t.k0 = t.allOne ? 1
-                  : tessMaxI(tessCeilDiv(t.m0, LB_TESS_CAP), tessMaxI(tessCeilDiv(n1, LB_TESS_CAP), tessCeilDiv(n3, LB_TESS_CAP)));
+                  : tessMaxI(tessCeilDiv(t.m0, LB_TESS_CAP),
+                             tessMaxI(tessCeilDiv(n1, LB_TESS_CAP), tessCeilDiv(n3, LB_TESS_CAP)));
   t.k1 = t.allOne ? 1
-                  : tessMaxI(tessCeilDiv(t.m1, LB_TESS_CAP), tessMaxI(tessCeilDiv(n0, LB_TESS_CAP), tessCeilDiv(n2, LB_TESS_CAP)));
+                  : tessMaxI(tessCeilDiv(t.m1, LB_TESS_CAP),
+                             tessMaxI(tessCeilDiv(n0, LB_TESS_CAP), tessCeilDiv(n2, LB_TESS_CAP)));
   return t;
 }
 
