@@ -5,8 +5,7 @@
 
 namespace lb {
 
-InstanceUpload::InstanceUpload(const PathEnv& env)
-    : env_(env), first_(size_t(env.slots)), count_(size_t(env.slots)) {}
+InstanceUpload::InstanceUpload(const PathEnv& env) : env_(env), first_(size_t(env.slots)), count_(size_t(env.slots)) {}
 
 void InstanceUpload::upload(int slot, const Selection& selection) {
   const size_t total = selection.instanceCount();

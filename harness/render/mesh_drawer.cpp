@@ -50,8 +50,7 @@ class MeshDrawer : public PathDrawer {
       case DrawPath::GpuIndirect: {
         gpu_ = makeGpuIndirectDrawer(env);
         const GpuLod& g = gpu_->lodState()->gpuLod();
-        if (g.meshTasksWord < 0 || g.meshTaskRecords == 0 ||
-            uint64_t(g.meshTasksWord + 3) > g.initialState.size())
+        if (g.meshTasksWord < 0 || g.meshTaskRecords == 0 || uint64_t(g.meshTasksWord + 3) > g.initialState.size())
           throw std::logic_error("scheme '" + info.name + "' names no mesh-task arguments in its LOD state");
         // The passes size the draw by the records they wrote: it must stay within the task grid.
         const uint32_t most = groupsFor(g.maxInstances, g.meshTaskRecords);
