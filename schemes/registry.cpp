@@ -22,6 +22,9 @@ const Scheme& clipmapScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
 const Scheme& uniformCullScheme();
+const Scheme& sphereMsScheme();
+const Scheme& cdlodMsScheme();
+const Scheme& cbtMsScheme();
 
 static std::vector<const Scheme*>& registered() {
   static std::vector<const Scheme*> schemes = {
@@ -44,6 +47,10 @@ static std::vector<const Scheme*>& registered() {
       &cbtScheme(),
       &cbtTsScheme(),
       &uniformCullScheme(),
+      // Mesh-shader twins (DrawPath::Mesh): skipped, with the reason, on devices without VK_EXT_mesh_shader.
+      &sphereMsScheme(),
+      &cdlodMsScheme(),
+      &cbtMsScheme(),
       // clang-format on
   };
   return schemes;
@@ -62,7 +69,7 @@ TuneSpace defaultTuneSpace(const Scheme& scheme) {
   TuneSpace space;
   // Patches per side decide how fine a tessellation scheme can go at all (level 64 x grid cells a
   // side): 16 is coarse for a 4097^2 terrain, 256 reaches 16385^2 at level 64.
-  if (info.path == DrawPath::Tessellation && !info.mainParam.empty()) space["grid"] = {16, 64, 256};
+  if (drawsPatchGrid(info) && !info.mainParam.empty()) space["grid"] = {16, 64, 256};
   // What a user of each method sets besides its main knob (the sources' constants, as ranges).
   // Finer cells than samples are what a close view of a coarse DEM needs to follow its bilinear
   // surface (an H100 run found cdlod-sse and cbt unable to reach 1 px on a 90 m crop's grazing
@@ -74,6 +81,9 @@ TuneSpace defaultTuneSpace(const Scheme& scheme) {
       {"clipmap", {{"cells_per_texel", {1, 2}}}},                // the finest level's spacing
       {"cbt", {{"subd", {2, 3}}, {"cells_per_texel", {1, 2}}}},  // LEB2D's leaf subdivision, depth
       {"cbt-ts", {{"subd", {2, 3}}, {"cells_per_texel", {1, 2}}}},
+      // The mesh twins tune what their twins tune.
+      {"cdlod-ms", {{"node_cells", {16, 64}}, {"cells_per_texel", {1, 2}}}},
+      {"cbt-ms", {{"subd", {2, 3}}, {"cells_per_texel", {1, 2}}}},
   };
 
   auto extra = kExtra.find(info.name);
@@ -100,7 +110,8 @@ const Scheme* findScheme(const std::string& name) {
 }
 
 const std::vector<std::string>& schemeGroupNames() {
-  static const std::vector<std::string> names = {"all", "tessellation", "instanced-grid", "gpu-indirect", "controls"};
+  static const std::vector<std::string> names = {"all",          "tessellation", "instanced-grid",
+                                                 "gpu-indirect", "mesh",         "controls"};
   return names;
 }
 
@@ -111,7 +122,7 @@ std::vector<const Scheme*> schemeGroup(const std::string& group) {
     const DrawPath path = s->info().path;
     if (group == "all" || (group == "tessellation" && path == DrawPath::Tessellation) ||
         (group == "instanced-grid" && path == DrawPath::InstancedGrid) ||
-        (group == "gpu-indirect" && path == DrawPath::GpuIndirect))
+        (group == "gpu-indirect" && path == DrawPath::GpuIndirect) || (group == "mesh" && path == DrawPath::Mesh))
       out.push_back(s);
   }
   return out;

@@ -29,7 +29,7 @@ using TuneSpace = std::map<std::string, std::vector<double>>;
 TuneSpace defaultTuneSpace(const Scheme& scheme);
 
 // Schemes a config names at once (config/config.h): "all" is allSchemes() (plugins' included, no
-// control); "tessellation", "instanced-grid" and "gpu-indirect" those of one draw path;
+// control); "tessellation", "instanced-grid", "gpu-indirect" and "mesh" those of one draw path;
 // "controls" the controls. Registry order; empty for a name that is no group.
 std::vector<const Scheme*> schemeGroup(const std::string& group);
 const std::vector<std::string>& schemeGroupNames();

@@ -50,6 +50,17 @@ lb::FrameResult renderOnce(lb::Renderer& r, const lb::CameraPose& pose) {
   return done.empty() ? lb::FrameResult{} : done.back();
 }
 
+bool drawsOnTestDevice(const lb::Scheme& scheme) {
+  return scheme.info().path != lb::DrawPath::Mesh || gpu().meshShader;
+}
+
+std::vector<const lb::Scheme*> drawableSchemes() {
+  std::vector<const lb::Scheme*> out;
+  for (const lb::Scheme* s : lb::allSchemes())
+    if (drawsOnTestDevice(*s)) out.push_back(s);
+  return out;
+}
+
 std::vector<std::string> shippedPathFiles() {
   std::vector<std::string> out;
   for (const auto& e : std::filesystem::directory_iterator(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths"))

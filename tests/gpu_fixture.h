@@ -27,6 +27,12 @@ class GpuTest : public ::testing::Test {
   int errorsBefore_ = 0;
 };
 
+// Whether the test device draws the scheme: every scheme, but a mesh-shader one (DrawPath::Mesh)
+// only where the device has VK_EXT_mesh_shader (elsewhere its case is skipped, and its test).
+bool drawsOnTestDevice(const lb::Scheme& scheme);
+// The registry's schemes the test device draws, in registry order.
+std::vector<const lb::Scheme*> drawableSchemes();
+
 // File names of every shipped camera path (configs/paths/*.csv), sorted: "dive.csv", ...
 std::vector<std::string> shippedPathFiles();
 

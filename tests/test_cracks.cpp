@@ -165,7 +165,7 @@ TEST_F(Cracks, RegistrySchemesHaveNoCracksOnShippedPaths) {
     EXPECT_EQ(analyticCracks(reference, {}, hf, n, f.levels), 0);
     refImages.push_back(f.image);
   }
-  for (const Scheme* s : allSchemes()) {
+  for (const Scheme* s : lbtest::drawableSchemes()) {
     if (s == &reference) continue;
     Renderer r(gpu(), hf, {w, h, n});
     ParamValues params = resolveParams(s->info(), {});

@@ -27,8 +27,8 @@ const std::string kConfigs = std::string(LODBENCH_SOURCE_DIR) + "/configs";
 
 std::vector<std::string> instancedSchemes() {
   std::vector<std::string> out;
-  for (const Scheme* s : allSchemes())
-    if (s->info().path != DrawPath::Tessellation) out.push_back(s->info().name);  // cbt too
+  for (const Scheme* s : lbtest::drawableSchemes())
+    if (s->info().path != DrawPath::Tessellation) out.push_back(s->info().name);  // cbt, and mesh twins on GPUs
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "cli_run.h"
 #include "plugin_twin.h"
+#include "schemes/plugin_api.h"
 
 namespace fs = std::filesystem;
 using lb::test::CliOut;
@@ -60,7 +61,7 @@ TEST_F(Plugins, PluginFileDigestAndApiVersionAreInTheCaseIdentityAndARebuildReru
   const json before = lb::test::readJson(dir + "/run/cases/own-sphere_proc65s1_flyover_64x36.json");
   EXPECT_EQ(before["inputs"]["plugin"]["sha256"],
             lb::test::shell("sha256sum " + lib + " | cut -c1-64").text.substr(0, 64));
-  EXPECT_EQ(before["inputs"]["plugin"]["api_version"], 1);
+  EXPECT_EQ(before["inputs"]["plugin"]["api_version"], LODBENCH_PLUGIN_API_VERSION);
   EXPECT_FALSE(lb::test::readJson(dir + "/run/cases/sphere_proc65s1_flyover_64x36.json")["inputs"].contains("plugin"));
   // The same library again: both cases kept.
   CliOut same = lb::test::lodbench("run " + config + " --out " + dir + "/run");
@@ -104,7 +105,9 @@ TEST_F(Plugins, BadPluginsAreClearErrorsThatWriteNothing) {
   expectRefused("run " + tiny + " --plugin " + kPlugins + "/libno_symbol.so",
                 "exports no registration function lodbench_plugin", dir + "/b");
   expectRefused("run " + tiny + " --plugin " + kPlugins + "/libwrong_api.so",
-                "was built against plugin API 2 (lodbench 9.9.9), this lodbench speaks plugin API 1 (lodbench ",
+                "was built against plugin API " + std::to_string(LODBENCH_PLUGIN_API_VERSION + 1) +
+                    " (lodbench 9.9.9), this lodbench speaks plugin API " +
+                    std::to_string(LODBENCH_PLUGIN_API_VERSION) + " (lodbench ",
                 dir + "/c");
   expectRefused("run " + tiny + " --plugin " + kPlugins + "/libcollides.so",
                 "scheme 'sphere' has the name of a built-in scheme", dir + "/d");
@@ -122,7 +125,7 @@ TEST_F(Plugins, ConfigPluginErrorsNameFileLineAndField) {
   EXPECT_EQ(o.code, 2) << o.text;
   EXPECT_NE(o.text.find(file + ":"), std::string::npos) << o.text;
   EXPECT_NE(o.text.find("field '/plugins/0': plugin '"), std::string::npos) << o.text;
-  EXPECT_NE(o.text.find("plugin API 2"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("plugin API " + std::to_string(LODBENCH_PLUGIN_API_VERSION + 1)), std::string::npos) << o.text;
   EXPECT_FALSE(fs::exists(dir + "/run"));
 }
 

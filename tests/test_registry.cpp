@@ -30,6 +30,8 @@ class EveryScheme : public lbtest::GpuTest, public ::testing::WithParamInterface
 
 TEST_P(EveryScheme, RendersShippedPathsDeterministicallyWithinLimits) {
   const Scheme& scheme = *findScheme(GetParam());
+  if (!lbtest::drawsOnTestDevice(scheme))
+    GTEST_SKIP() << "a mesh-shader scheme: the test device lacks VK_EXT_mesh_shader";
   const Heightfield& terrain = lbtest::testTerrain();
   Renderer r(lbtest::gpu(), terrain, {96, 64, 12});
   r.setScheme(scheme, {});
@@ -48,9 +50,9 @@ TEST_P(EveryScheme, RendersShippedPathsDeterministicallyWithinLimits) {
       EXPECT_EQ(a.stats.clipInvocations, b.stats.clipInvocations);
       EXPECT_EQ(a.stats.clipPrimitives, b.stats.clipPrimitives);
       EXPECT_EQ(a.stats.fsInvocations, b.stats.fsInvocations);
-      // 0 on the instanced path; a GPU-indirect patch footprint (cbt-ts) tessellates every instance.
+      // 0 on the instanced and mesh paths; a GPU-indirect patch footprint (cbt-ts) tessellates every instance.
       const bool patchInstances = r.path() == DrawPath::GpuIndirect && !scheme.info().tesc.empty();
-      EXPECT_EQ(a.stats.tcsPatches, patchInstances ? a.instances : r.patchCount());
+      EXPECT_EQ(a.stats.tcsPatches, patchInstances ? a.instances : r.path() == DrawPath::Mesh ? 0 : r.patchCount());
       EXPECT_EQ(a.instances, b.instances);
       EXPECT_EQ(a.draws, b.draws);
       if (r.path() == DrawPath::InstancedGrid) {
@@ -116,8 +118,11 @@ TEST(Registry, NamesAreUniqueAndDescribed) {
     EXPECT_TRUE(names.insert(i.name).second) << i.name;
     EXPECT_FALSE(i.description.empty()) << i.name;
     EXPECT_FALSE(i.seed.empty()) << i.name;
-    // Each path's LOD shader: the control shader, or the instanced path's vertex shader.
-    EXPECT_FALSE((i.path == DrawPath::Tessellation ? i.tesc : i.vert).empty()) << i.name;
+    // Each path's LOD shader: the control shader, the instanced path's vertex shader, or the mesh path's
+    // task and mesh shaders.
+    const std::string& lod = i.path == DrawPath::Tessellation ? i.tesc : i.path == DrawPath::Mesh ? i.mesh : i.vert;
+    EXPECT_FALSE(lod.empty()) << i.name;
+    if (i.path == DrawPath::Mesh) EXPECT_FALSE(i.task.empty()) << i.name;
     EXPECT_LE(i.params.size(), size_t(LB_SCHEME_PARAM_VEC4S * 4)) << i.name;
   }
 }

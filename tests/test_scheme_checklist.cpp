@@ -83,8 +83,10 @@ std::vector<std::string> missingFor(const Scheme& scheme, const std::set<std::st
   const bool instanced = info.path == DrawPath::InstancedGrid;
   const bool indirect = info.path == DrawPath::GpuIndirect;
   const bool vertexStage = instanced || (indirect && info.tesc.empty());
-  std::string stem = vertexStage ? info.vert : info.tesc;
-  const std::string lodShader = stem + (vertexStage ? ".vert" : ".tesc");
+  // Mesh shaders: the task shader, which decides the LOD or reads the twin's (its parameter header).
+  const bool taskStage = info.path == DrawPath::Mesh;
+  std::string stem = taskStage ? info.task : vertexStage ? info.vert : info.tesc;
+  const std::string lodShader = stem + (taskStage ? ".task" : vertexStage ? ".vert" : ".tesc");
   const std::string tesc = "shaders/" + lodShader;
   need(!stem.empty() && exists(tesc), tesc);
   if (!info.compute.empty()) need(exists("shaders/" + info.compute + ".comp"), "shaders/" + info.compute + ".comp");
