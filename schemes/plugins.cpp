@@ -91,7 +91,11 @@ bool pluginsSupported(std::string* why) {
   (void)why;
   return true;
 #else
-  if (why) *why = LODBENCH_PLUGINS_OFF_REASON;
+  // The same words as CMakeLists.txt's LODBENCH_PLUGINS_OFF_REASON, which the package config shows.
+  if (why)
+    *why = LODBENCH_FUZZ_BUILD ? "it is a fuzzing build"
+                               : "it was built with -DLODBENCH_STATIC_RUNTIME=ON (its own static C++ runtime, which a "
+                                 "plugin cannot share); build lodbench without it to use plugins";
   return false;
 #endif
 }
