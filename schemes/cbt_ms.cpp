@@ -18,7 +18,8 @@ class CbtMs : public Scheme {
     static const SchemeInfo kInfo = {
         .name = "cbt-ms",
         .description = "cbt's tree and update, each leaf's micro-triangles emitted by mesh shaders",
-        .seed = "Dupuy 2020 / LEB2D's MS pipeline (the same tree amplified by task and mesh shaders, VK_EXT_mesh_shader)",
+        .seed =
+            "Dupuy 2020 / LEB2D's MS pipeline (the same tree amplified by task and mesh shaders, VK_EXT_mesh_shader)",
         .params = cbtParams(),
         .mainParam = "tri_size",
         .mainParamRole = MainParamRole::TriangleWidthPx,

@@ -24,8 +24,9 @@ class CdlodMs : public Scheme {
       return SchemeInfo{
           .name = "cdlod-ms",
           .description = "cdlod's CPU quadtree selection and morph, each quadrant's grid emitted by mesh shaders",
-          .seed = "Strugar 2010, Continuous Distance-Dependent Level of Detail (LODSelect, morph), amplified by "
-                  "task and mesh shaders (VK_EXT_mesh_shader)",
+          .seed =
+              "Strugar 2010, Continuous Distance-Dependent Level of Detail (LODSelect, morph), amplified by "
+              "task and mesh shaders (VK_EXT_mesh_shader)",
           .params = twin.params,
           .mainParam = twin.mainParam,
           .mainParamRole = twin.mainParamRole,

@@ -23,8 +23,9 @@ class SphereMs : public Scheme {
     static const SchemeInfo kInfo = {
         .name = "sphere-ms",
         .description = "sphere's LOD per patch in a task shader, its integer factors' patterns from a mesh shader",
-        .seed = "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (sphere with integer = 1), "
-                "amplified by task and mesh shaders (VK_EXT_mesh_shader)",
+        .seed =
+            "nvidia-dx11-terrain-tessellation-2011: Hull Shader: Tessellation LOD (sphere with integer = 1), "
+            "amplified by task and mesh shaders (VK_EXT_mesh_shader)",
         .params = {{"tri_size", LB_SPHERE_TRI_SIZE, 3, 0.5, 64, false,
                     "target triangle width in pixels (g_tessellatedTriSize)"}},
         .mainParam = "tri_size",

@@ -115,7 +115,8 @@ TEST_F(MeshShader, SphereMsDrawsTheGeneratorsTrianglesAtTheFactorsItChose) {
         for (size_t p = 0; p < r.patchCount(); ++p) {
           const float* l = &levels[p * LB_CAPTURE_STRIDE];
           expected += generatorTriangles(l, memo);
-          for (int k = 0; k < 6; ++k) differing += equalSpacingFactor(tessLevels[p * LB_CAPTURE_STRIDE + size_t(k)]) != int(l[k]) ? 1 : 0;
+          for (int k = 0; k < 6; ++k)
+            differing += equalSpacingFactor(tessLevels[p * LB_CAPTURE_STRIDE + size_t(k)]) != int(l[k]) ? 1 : 0;
         }
         EXPECT_EQ(live.stats.clipInvocations, expected) << "the clipper's count";
         EXPECT_EQ(r.measureHistogram(pose, pose).total(), expected) << "the histogram's count";
@@ -231,9 +232,8 @@ TEST(MeshPath, SkippedWithTheReasonWhereTheDeviceLacksMeshShaders) {
                     {"measure", {{"every", 0}}}};
   fs::create_directories(dir);
   std::ofstream(dir + "/skip.json") << cfg.dump();
-  const lb::test::CliOut out =
-      lb::test::shell("env LODBENCH_TEST_DISABLE=meshShader " + std::string(LODBENCH_BINARY) + " run " + dir +
-                      "/skip.json --out " + dir + "/run -q");
+  const lb::test::CliOut out = lb::test::shell("env LODBENCH_TEST_DISABLE=meshShader " + std::string(LODBENCH_BINARY) +
+                                               " run " + dir + "/skip.json --out " + dir + "/run -q");
   EXPECT_EQ(out.code, 0) << out.text;
   int skipped = 0;
   for (const auto& e : fs::directory_iterator(dir + "/run/cases")) {

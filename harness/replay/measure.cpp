@@ -208,12 +208,14 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
     lap("popping");
   }
-  // Saturation is a tessellation level at its cap; the instanced path's schemes count their own
-  // limits (SchemeInfo::counters).
-  if (instanced)
+  // Saturation is a tessellation level at its cap, where levels are decided per patch (the
+  // tessellation path, a mesh path's patches); the other paths' schemes count their own limits
+  // (SchemeInfo::counters).
+  const bool patchLevels = r.patchCount() > 0;
+  if (!patchLevels)
     m.unavailable["saturated_patches"] =
         "no tessellation levels on this draw path: the scheme's own counters say where it hits its limits";
-  set("saturated_patches", instanced ? kNan : saturatedPatches(levels, scheme.partitioning(params)));
+  set("saturated_patches", patchLevels ? saturatedPatches(levels, scheme.partitioning(params)) : kNan);
   const std::vector<SchemeCounter>& counters = scheme.info().counters;
   if (!counters.empty()) {
     std::vector<double> counts = r.path() == DrawPath::InstancedGrid ? selectionCounts : scheme.countFrame(levels);
