@@ -97,12 +97,13 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
     allLevels.insert(allLevels.end(), l.max.begin(), l.max.end());
   }
   const NormalMap normals = computeNormalMap(hf);
-  heights_ = createBufferWithData(ctx, hf.h.data(), heightBytes, kStorage);
-  mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage);
+  const MemoryTag measure{GpuResource::Measure};
+  heights_ = createBufferWithData(ctx, hf.h.data(), heightBytes, kStorage, measure);
+  mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage, measure);
   normals_ = createBufferWithData(ctx, normals.texels.data(), VkDeviceSize(normals.texels.size()) * sizeof(uint16_t),
-                                  kStorage);
-  params_ = createBuffer(ctx, sizeof(Params<double>), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-  unusedDistance_ = createBuffer(ctx, sizeof(float), kStorage, false);
+                                  kStorage, measure);
+  params_ = createBuffer(ctx, sizeof(Params<double>), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, measure);
+  unusedDistance_ = createBuffer(ctx, sizeof(float), kStorage, false, measure);
 
   const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
   bindings_ = createBindings(ctx,
@@ -170,9 +171,9 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
 
 RgbaImage GpuRaycast::image(const CameraPose& pose, int width, int height, std::vector<float>* distance) {
   const VkDeviceSize bytes = VkDeviceSize(width > 0 ? width : 0) * VkDeviceSize(height > 0 ? height : 0) * 4;
-  Buffer rgba = createBuffer(ctx_, bytes ? bytes : 4, kStorage, true);
+  Buffer rgba = createBuffer(ctx_, bytes ? bytes : 4, kStorage, true, {GpuResource::Measure});
   Buffer dist;
-  if (distance) dist = createBuffer(ctx_, bytes ? bytes : 4, kStorage, true);
+  if (distance) dist = createBuffer(ctx_, bytes ? bytes : 4, kStorage, true, {GpuResource::Measure});
   run(pose, width, height, rgba, distance ? &dist : nullptr);
   RgbaImage img{width, height, std::vector<uint8_t>(size_t(bytes))};
   std::memcpy(img.px.data(), rgba.mapped, size_t(bytes));

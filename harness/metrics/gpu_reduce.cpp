@@ -54,8 +54,9 @@ GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
   const VkDeviceSize bytes = VkDeviceSize(LB_RED_PARTIALS + partialWords) * 4;
   result_ = createBuffer(
       ctx, bytes,
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
-  readback_ = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+      {GpuResource::Measure});
+  readback_ = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, {GpuResource::Measure});
   Weights w{};
   const SsimConstants& k = ssimConstants();
   for (int i = 0; i <= 2 * LB_SSIM_RADIUS; ++i) w.d[i] = k.window[i];
@@ -63,7 +64,7 @@ GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
   w.d[LB_SSIM_C1] = k.c1;
   w.d[LB_SSIM_C2] = k.c2;
   for (int i = 0; i < 16; ++i) w.f[i] = float(w.d[i]);
-  weights_ = createBufferWithData(ctx, &w, sizeof w, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  weights_ = createBufferWithData(ctx, &w, sizeof w, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::Measure});
 
   std::vector<DescriptorBinding> layout;
   for (uint32_t b : {LB_REDUCE_BINDING_A, LB_REDUCE_BINDING_B, LB_REDUCE_BINDING_RESULT, LB_REDUCE_BINDING_WEIGHTS})
@@ -92,12 +93,14 @@ GpuReduce::GpuReduce(Context& ctx, int width, int height, bool allowFloat64)
 
 Buffer GpuReduce::upload(const RgbaImage& img) {
   if (img.px.empty()) throw std::invalid_argument("GpuReduce::upload: empty image");
-  return createBufferWithData(ctx_, img.px.data(), img.px.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  return createBufferWithData(ctx_, img.px.data(), img.px.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              {GpuResource::Measure});
 }
 
 Buffer GpuReduce::upload(const std::vector<float>& v) {
   if (v.empty()) throw std::invalid_argument("GpuReduce::upload: empty error map");
-  return createBufferWithData(ctx_, v.data(), v.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  return createBufferWithData(ctx_, v.data(), v.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              {GpuResource::Measure});
 }
 
 void GpuReduce::bind(const Buffer& a, const Buffer& b) {

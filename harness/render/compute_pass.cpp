@@ -53,7 +53,7 @@ void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, Vk
 
 std::vector<float> readImageRgba32f(Context& ctx, const Image& image, int channels) {
   const VkDeviceSize bytes = VkDeviceSize(image.width) * image.height * VkDeviceSize(channels) * sizeof(float);
-  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, {GpuResource::Staging});
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,

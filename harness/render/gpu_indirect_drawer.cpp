@@ -45,23 +45,27 @@ class GpuIndirectDrawer : public PathDrawer, public LodState {
                            "' draws with vkCmdDrawIndexedIndirectCount: the device lacks drawIndirectCount, "
                            "multiDrawIndirect or drawIndirectFirstInstance");
     auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-    vertices_ = createBufferWithData(ctx, f.vertices.data(), bytes(f.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    indices_ = createBufferWithData(ctx, f.indices.data(), bytes(f.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    vertices_ = createBufferWithData(ctx, f.vertices.data(), bytes(f.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                     {GpuResource::Geometry, env.memory});
+    indices_ = createBufferWithData(ctx, f.indices.data(), bytes(f.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                    {GpuResource::Geometry, env.memory});
     instances_ = createBuffer(ctx, VkDeviceSize(sizeof(InstanceRecord)) * lod_.maxInstances,
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, {GpuResource::Instances, env.memory});
     // Indirect too: a pass may dispatch the next by counts an earlier one wrote into the state.
     const VkBufferUsageFlags state = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-    state_ = createBufferWithData(ctx, lod_.initialState.data(), bytes(lod_.initialState), state);
-    snapshot_ = createBuffer(ctx, bytes(lod_.initialState), state, false);
+    state_ = createBufferWithData(ctx, lod_.initialState.data(), bytes(lod_.initialState), state,
+                                  {GpuResource::LodState, env.memory});
+    snapshot_ = createBuffer(ctx, bytes(lod_.initialState), state, false, {GpuResource::LodState, env.memory});
     // Zeros until the first pass writes them: an empty draw, never garbage counts.
     const std::vector<uint32_t> noDraw(argsWords(), 0u);
     args_ = createBufferWithData(
         ctx, noDraw.data(), noDraw.size() * sizeof(uint32_t),
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        {GpuResource::LodState, env.memory});
     // Every slot's arguments, then the overflow word update() copies (GpuLod::overflowWord).
     argsReadback_ = createBuffer(ctx, (noDraw.size() * size_t(env.slots) + 1) * sizeof(uint32_t),
-                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, {GpuResource::Capture, env.memory});
     std::memset(argsReadback_.mapped, 0, size_t(argsReadback_.size));
     for (const GpuLodPass& pass : lod_.passes) {
       if (pass.indirectWord >= 0 && uint64_t(pass.indirectWord + 3) > lod_.initialState.size())
@@ -143,14 +147,15 @@ class GpuIndirectDrawer : public PathDrawer, public LodState {
     env_.finish();
     Buffer initial = createBufferWithData(env_.ctx, lod_.initialState.data(),
                                           VkDeviceSize(lod_.initialState.size() * sizeof(uint32_t)),
-                                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT, {GpuResource::Staging, env_.memory});
     copyState(initial, state_);
   }
   void snapshot() override { copyState(state_, snapshot_); }
   void restore() override { copyState(snapshot_, state_); }
   std::vector<uint32_t> read() override {
     env_.finish();
-    Buffer host = createBuffer(env_.ctx, state_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    Buffer host = createBuffer(env_.ctx, state_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+                               {GpuResource::Staging, env_.memory});
     copyState(state_, host);
     const auto* p = static_cast<const uint32_t*>(host.mapped);
     return std::vector<uint32_t>(p, p + lod_.initialState.size());
@@ -165,7 +170,7 @@ class GpuIndirectDrawer : public PathDrawer, public LodState {
                              std::to_string(lod_.maxInstances));
     env_.finish();
     Buffer from = createBufferWithData(env_.ctx, words.data(), VkDeviceSize(words.size() * sizeof(uint32_t)),
-                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, {GpuResource::Staging, env_.memory});
     copyState(from, state_);
   }
   uint32_t update(const CameraPose& pose) override {

@@ -14,7 +14,7 @@ void InstanceUpload::upload(int slot, const Selection& selection) {
     env_.finish();
     capacity_ = uint32_t(std::max<size_t>(256, total + total / 2));
     records_ = createBuffer(env_.ctx, VkDeviceSize(sizeof(InstanceRecord)) * capacity_ * VkDeviceSize(env_.slots),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, {GpuResource::Instances, env_.memory});
     env_.rebind();
   }
   auto* out = static_cast<InstanceRecord*>(records_.mapped) + size_t(slot) * capacity_;

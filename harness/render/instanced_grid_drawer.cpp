@@ -35,8 +35,11 @@ class InstancedGridDrawer : public PathDrawer {
     }
     if (ranges_.empty()) throw std::logic_error("scheme '" + name + "' supplied no footprints");
     auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-    vertices_ = createBufferWithData(env.ctx, vertices.data(), bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    indices_ = createBufferWithData(env.ctx, indices.data(), bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    const MemoryTag geometry{GpuResource::Geometry, env.memory};
+    vertices_ =
+        createBufferWithData(env.ctx, vertices.data(), bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, geometry);
+    indices_ =
+        createBufferWithData(env.ctx, indices.data(), bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, geometry);
   }
 
   GeometryStages stages() const override {

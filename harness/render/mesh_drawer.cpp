@@ -67,7 +67,7 @@ class MeshDrawer : public PathDrawer {
     const std::vector<uint32_t> table = env.scheme.meshTable();
     if (!table.empty())
       table_ = createBufferWithData(ctx, table.data(), VkDeviceSize(table.size() * sizeof(uint32_t)),
-                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::SchemeTables, env.memory});
   }
 
   GeometryStages stages() const override {
@@ -170,10 +170,11 @@ class MeshDrawer : public PathDrawer {
     }
     Context& ctx = env_.ctx;
     auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-    patches_ = createBufferWithData(ctx, records.data(), bytes(records), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const MemoryTag geometry{GpuResource::Geometry, env_.memory};
+    patches_ = createBufferWithData(ctx, records.data(), bytes(records), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
+    bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
     capture_ = createBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, {GpuResource::Capture, env_.memory});
     std::memset(capture_.mapped, 0, size_t(capture_.size));
     if (groupsFor(patchCount_, LB_MESH_TASK_RECORDS) > ctx.meshLimits.maxTaskWorkGroupCountX)
       throw FeatureMissing("scheme '" + scheme.info().name + "': " + std::to_string(patchCount_) +

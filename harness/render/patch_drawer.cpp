@@ -44,13 +44,16 @@ class PatchDrawer : public PathDrawer {
     if (g.schemeBuffer.empty()) g.schemeBuffer.assign(4, 0.0f);
     Context& ctx = env.ctx;
     auto bytes = [](const auto& v) { return VkDeviceSize(v.size() * sizeof(v[0])); };
-    vertices_ = createBufferWithData(ctx, g.vertices.data(), bytes(g.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    indices_ = createBufferWithData(ctx, g.indices.data(), bytes(g.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    schemeBuf_ =
-        createBufferWithData(ctx, g.schemeBuffer.data(), bytes(g.schemeBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const MemoryTag geometry{GpuResource::Geometry, env.memory};
+    vertices_ =
+        createBufferWithData(ctx, g.vertices.data(), bytes(g.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, geometry);
+    indices_ =
+        createBufferWithData(ctx, g.indices.data(), bytes(g.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, geometry);
+    bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
+    schemeBuf_ = createBufferWithData(ctx, g.schemeBuffer.data(), bytes(g.schemeBuffer),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::SchemeTables, env.memory});
     capture_ = createBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, {GpuResource::Capture, env.memory});
     std::memset(capture_.mapped, 0, size_t(capture_.size));
     uint32_t perPatch = maxVerticesPerPatch(scheme.maxLevel(params), scheme.partitioning(params));
     patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));

@@ -18,6 +18,7 @@
 namespace lb {
 
 struct Bindings;
+struct GpuMemoryAccount;
 struct Buffer;
 struct CameraPose;
 struct Context;
@@ -42,6 +43,8 @@ struct PathEnv {
   std::function<void()> finish;  // waits for every frame in flight (before a path replaces a buffer they read)
   std::function<void()> rebind;  // writes buffers() into the descriptor set again
   std::function<UniformSlot(const CameraPose&)> uniforms;  // a free slot's uniforms, LOD and view at `pose`
+  // The renderer's memory account: a path tags its buffers {resource, memory} (vk/gpu_memory.h).
+  GpuMemoryAccount* memory = nullptr;
 };
 
 // The stages before rasterization of every pipeline of a path (the frame core adds the fragment

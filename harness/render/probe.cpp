@@ -70,10 +70,13 @@ void createPipeline(ProbeObjects& o, const ProbeOptions& opt) {
 void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOptions& opt) {
   Context& ctx = o.ctx;
   auto w = uint32_t(opt.width), h = uint32_t(opt.height);
-  o.color = createImage(ctx, w, h, kColor, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-  o.depth = createImage(ctx, w, h, kDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  o.color = createImage(ctx, w, h, kColor, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                        {GpuResource::Frame});
+  o.depth = createImage(ctx, w, h, kDepth, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                        {GpuResource::Frame});
   o.height = createImage(ctx, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                         {GpuResource::Heights});
   uploadImage(ctx, o.height, terrain.h.data(), terrain.h.size() * sizeof(float));
   std::vector<glm::vec2> verts;
   std::vector<uint32_t> idx;
@@ -95,9 +98,10 @@ void createResources(ProbeObjects& o, const Heightfield& terrain, const ProbeOpt
     verts = gridVertices(opt.grid, terrain.extent);
     idx = patchIndices(opt.grid, Topology::Quad4);
   }
-  o.vertices =
-      createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  o.indices = createBufferWithData(ctx, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  o.vertices = createBufferWithData(ctx, verts.data(), verts.size() * sizeof(verts[0]),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, {GpuResource::Geometry});
+  o.indices = createBufferWithData(ctx, idx.data(), idx.size() * sizeof(idx[0]), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                   {GpuResource::Geometry});
   o.sampler = createSampler(ctx, VK_FILTER_NEAREST);
   o.bindings = createBindings(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_ALL_GRAPHICS}},
                               VK_SHADER_STAGE_ALL_GRAPHICS, sizeof(ProbePush));

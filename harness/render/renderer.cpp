@@ -61,7 +61,8 @@ void Renderer::prepareMeshCapture(uint64_t triangles) {
   if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
     meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
     if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
-    mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
+                         tag(GpuResource::Capture));
     bindPathBuffers();
   }
   auto* head = static_cast<uint32_t*>(mesh_.mapped);

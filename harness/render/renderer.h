@@ -87,6 +87,9 @@ class Renderer {
   // Paths with instances: every triangle's three world vertices the last measureHistogram drew
   // (captured by its geometry shader); empty on the tessellation path.
   const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
+  // Device memory this renderer and its path hold now, by resource (vk/gpu_memory.h): what a case's
+  // summary.memory records.
+  const GpuMemoryAccount& gpuMemory() const { return memory_; }
 
  private:
   struct Slot {
@@ -113,10 +116,12 @@ class Renderer {
   FrameUniforms fillUniforms(int slotIndex, const CameraPose& view, const CameraPose& lod);
   void prepareFrame(int slotIndex, const CameraPose& view, const CameraPose& lod);  // uniforms, the path's prepare
   void prepareMeshCapture(uint64_t triangles);
+  MemoryTag tag(GpuResource r) { return {r, &memory_}; }
 
   // Every Vulkan object below is owned by a vk::Unique (directly or through Buffer, Image, Bindings
   // and the path): when the constructor throws half-way, the members built so far release theirs.
   Context& ctx_;
+  GpuMemoryAccount memory_;  // before every buffer and image: they give their charges back to it
   const Heightfield& terrain_;
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;

@@ -56,16 +56,19 @@ Renderer::~Renderer() {
 void Renderer::createTargets() {
   auto w = uint32_t(settings_.width), h = uint32_t(settings_.height);
   color_ = createImage(ctx_, w, h, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                       VK_IMAGE_ASPECT_COLOR_BIT);
-  depth_ =
-      createImage(ctx_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+                       VK_IMAGE_ASPECT_COLOR_BIT, tag(GpuResource::Frame));
+  depth_ = createImage(ctx_, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                       tag(GpuResource::Frame));
   errorTarget_ =
       createImage(ctx_, w, h, kErrorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                  VK_IMAGE_ASPECT_COLOR_BIT);
-  readback_ = createBuffer(ctx_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+                  VK_IMAGE_ASPECT_COLOR_BIT, tag(GpuResource::Frame));
+  readback_ =
+      createBuffer(ctx_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, tag(GpuResource::Capture));
+  histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
+                            tag(GpuResource::Capture));
   height_ = createImage(ctx_, uint32_t(terrain_.width), uint32_t(terrain_.height), VK_FORMAT_R32_SFLOAT,
-                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                        tag(GpuResource::Heights));
   uploadImage(ctx_, height_, terrain_.h.data(), terrain_.h.size() * sizeof(float));
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
   // Once per terrain; the format is argued in terrain/normal_map.h.
@@ -74,12 +77,14 @@ void Renderer::createTargets() {
   const NormalMap& normals = *kept;
   setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
   normalMap_ = createImage(ctx_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                           tag(GpuResource::NormalMap));
   uploadImage(ctx_, normalMap_, normals.texels.data(), normals.texels.size() * sizeof(uint16_t));
   linearSampler_ = createSampler(ctx_, VK_FILTER_LINEAR);
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
-  uniforms_ = createBuffer(ctx_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  uniforms_ =
+      createBuffer(ctx_, uniformStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, tag(GpuResource::Frame));
 }
 
 void Renderer::createDescriptors() {
@@ -114,6 +119,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   meshCapacity_ = 0;
   meshAtLeast_ = 0;
   PathEnv env{ctx_, terrain_, settings_, scheme, params_, bindings_, kSlots};
+  env.memory = &memory_;
   env.finish = [this] { finish(); };
   env.rebind = [this] { bindPathBuffers(); };
   env.uniforms = [this](const CameraPose& pose) {
@@ -131,8 +137,9 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     TextureSize size = scheme.computeOutputSize(terrain_);
     if (size.width < 1 || size.height < 1)
       throw std::runtime_error("scheme '" + scheme.info().name + "' declares a compute pass but no output size");
-    schemeTex_ = createImage(ctx_, uint32_t(size.width), uint32_t(size.height), VK_FORMAT_R32G32B32A32_SFLOAT,
-                             texUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    schemeTex_ =
+        createImage(ctx_, uint32_t(size.width), uint32_t(size.height), VK_FORMAT_R32G32B32A32_SFLOAT,
+                    texUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT, tag(GpuResource::SchemeTables));
     FrameUniforms packed{};
     scheme.update(packed, params_);
     ComputePush push{};
@@ -149,8 +156,9 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     if (tex.rgba.size() != size_t(tex.width) * size_t(tex.height) * size_t(tex.channels))
       throw std::logic_error("scheme '" + scheme.info().name + "' supplied a texture of the wrong size");
     const VkFormat format = tex.channels == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
-    schemeTex_ = createImage(ctx_, uint32_t(tex.width), uint32_t(tex.height), format,
-                             texUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    schemeTex_ =
+        createImage(ctx_, uint32_t(tex.width), uint32_t(tex.height), format, texUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                    VK_IMAGE_ASPECT_COLOR_BIT, tag(GpuResource::SchemeTables));
     uploadImage(ctx_, schemeTex_, tex.rgba.data(), tex.rgba.size() * sizeof(float));
     schemeTexChannels_ = tex.channels;
   }
@@ -192,16 +200,16 @@ void Renderer::bindPathBuffers() {
     Buffer& b = placeholders_[k];
     if (b.buffer) return b;
     if (k == 1 || k == 3) {  // capture, instances: host-visible
-      b = createBuffer(ctx_, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+      b = createBuffer(ctx_, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, tag(GpuResource::Frame));
       std::memset(b.mapped, 0, size_t(b.size));
     } else {
-      b = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+      b = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tag(GpuResource::Frame));
     }
     return b;
   };
   if (!mesh_.buffer) {
     meshCapacity_ = 0;
-    mesh_ = createBuffer(ctx_, 16 + 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    mesh_ = createBuffer(ctx_, 16 + 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, tag(GpuResource::Capture));
     std::memset(mesh_.mapped, 0, size_t(mesh_.size));
   }
   const PathBuffers own = path_->buffers();

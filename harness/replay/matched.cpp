@@ -39,7 +39,8 @@ MatchResult matchOn(Renderer& r, Context& ctx, const Scheme& scheme, const Param
   if (spec.metric != "triangles" && measureOnGpu(config.measure, ctx)) {
     reduce = std::make_unique<GpuReduce>(ctx, c.width, c.height);
     errorMap = createBuffer(ctx, VkDeviceSize(c.width) * VkDeviceSize(c.height) * 4,
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                            {GpuResource::Measure});
   }
 
   auto poseAt = [&](int f) { return samplePose(path, config.fps, f, terrain); };

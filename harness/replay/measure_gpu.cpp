@@ -17,7 +17,8 @@ bool measureOnGpu(const MeasureSpec& spec, const Context& ctx) {
 static Buffer frameBuffer(Context& ctx, int width, int height) {
   return createBuffer(
       ctx, VkDeviceSize(width) * VkDeviceSize(height) * 4,
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false,
+      {GpuResource::Measure});
 }
 
 MeasureGpu::MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int height)
@@ -32,7 +33,8 @@ MeasureGpu::MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int 
       ctx_(ctx),
       width_(width),
       height_(height) {
-  staging_ = createBuffer(ctx, VkDeviceSize(width) * VkDeviceSize(height) * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  staging_ = createBuffer(ctx, VkDeviceSize(width) * VkDeviceSize(height) * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+                          {GpuResource::Measure});
 }
 
 void MeasureGpu::castTruth(const CameraPose& pose) {

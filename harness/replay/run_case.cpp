@@ -18,6 +18,7 @@
 #include "replay/matched.h"
 #include "replay/measure.h"
 #include "replay/timing_passes.h"
+#include "results/memory_json.h"
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
 #include "terrain/terrain_cache.h"
@@ -100,6 +101,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
                    CaseProgress* progress, ReferenceCache& refs) {
   using Phase = CaseProgress::Phase;
   auto t0 = std::chrono::steady_clock::now();
+  // The case's own peak host memory: the high-water mark starts at the resident set now.
+  const bool hostPeakReset = resetHostPeak();
   CaseResult result;
   const Scheme* scheme = findScheme(c.scheme);
   if (!scheme) throw InputError("unknown scheme '" + c.scheme + "'");
@@ -255,6 +258,9 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     CaseImageInputs in{ctx, c, config, *scheme, renderer, terrain, referenceKey(c), refs, pose, imageDir, timedLod};
     result.images = writeCaseImages(in, imageFrames(config.images, frames, worst), kept);
   }
+  // What the case's renderer holds at its end: the instance records grown to the path's largest
+  // selection, the captures to the largest measured frame.
+  result.memory = memoryJson(&renderer.gpuMemory(), "", hostPeak(hostPeakReset));
   result.seconds = secondsSince(t0);
   return result;
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "report/memory_table.h"
 #include "report/report_answer.h"
 #include "schemes/registry.h"
 
@@ -117,19 +118,34 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
       "draw ms split the frame where the draw path decides its LOD apart from drawing (instanced grid: the CPU "
       "selection is lod_cpu_ms, outside the GPU time; GPU-indirect: the compute passes); on the tessellation path "
       "the LOD decision runs inside the draw. The non-degenerate share leaves out the zero-area triangles (morph "
-      "collapses, clipmap strips) of the measured frames. Unreachable targets are marked: the search "
-      "stopped at the parameter's bound.";
+      "collapses, clipmap strips) of the measured frames. GPU MiB is the device memory the case's renderer held "
+      "(terrain, normal map, scheme tables, geometry, instances, LOD state, frame; capture buffers apart), \"of "
+      "it LOD\" the scheme's own share (tables, geometry, instances, LOD state). Unreachable targets are marked: "
+      "the search stopped at the parameter's bound.";
   const std::string device = deviceName(run);
   if (softwareRasterizer(device))
     out.caveat = "Caveat: " + device +
                  " is a software rasterizer. Tessellation is emulated on the CPU there, so these timings are no "
                  "verdict on the tessellator against the other draw paths; the errors and triangle counts hold on "
                  "any device.";
-  out.table.header = {
-      "scheme",        "draw path",  "matched parameter", "search reached",      "error p95 px, run median",
-      "GPU ms median", "GPU ms p95", "energy J/frame",    "energy spread",       "LOD GPU ms",
-      "draw GPU ms",   "LOD CPU ms", "triangles median",  "non-degenerate share"};
-  out.table.numeric = {false, false, false, false, true, true, true, true, true, true, true, true, true, true};
+  out.table.header = {"scheme",
+                      "draw path",
+                      "matched parameter",
+                      "search reached",
+                      "error p95 px, run median",
+                      "GPU ms median",
+                      "GPU ms p95",
+                      "energy J/frame",
+                      "energy spread",
+                      "GPU MiB",
+                      "of it LOD MiB",
+                      "LOD GPU ms",
+                      "draw GPU ms",
+                      "LOD CPU ms",
+                      "triangles median",
+                      "non-degenerate share"};
+  out.table.numeric = {false, false, false, false, true, true, true, true,
+                       true,  true,  true,  true,  true, true, true, true};
   std::vector<EnergyFigure> energies;
   std::vector<std::pair<std::string, std::string>> unmeasured;  // scheme, why
   json data = json::array();
@@ -156,8 +172,10 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
          textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian) : std::nullopt)),
          textCell(formatValue(gpu95)),
          textCell(formatValue(energy ? std::optional<double>(energy->mean) : std::nullopt)),
-         textCell(energy ? percentText(energy->spread) : formatValue(std::nullopt)), textCell(formatValue(lod)),
-         textCell(formatValue(draw)), textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
+         textCell(energy ? percentText(energy->spread) : formatValue(std::nullopt)),
+         textCell(mibText(memoryValue(c, "gpu_total_bytes"))), textCell(mibText(memoryValue(c, "gpu_lod_bytes"))),
+         textCell(formatValue(lod)), textCell(formatValue(draw)),
+         textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
          textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
          textCell(percentText(nonDegenerateShare(c)))});
     if (!std::isfinite(r.gpuMedian)) continue;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "report/equal_error.h"
+#include "report/memory_table.h"
 #include "report/page_assets.h"
 #include "report/report_answer.h"
 #include "report/report_glossary.h"
@@ -273,6 +274,19 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
         "between idle and boost): " +
             uncontrolled + ".",
         "caveat");
+
+  if (Table memory = memoryTable(run); !memory.rows.empty()) {
+    w.heading(2, "Memory", "memory");
+    w.para(
+        "Device memory each case's renderer held at its end, by resource, as the device sized each allocation: "
+        "the terrain's heights and shading normal map (with its mips), the scheme's tables, its geometry (patch "
+        "grid or footprint meshes, patch bounds), instance records, LOD state kept across frames, and the frame "
+        "(render targets, uniforms). \"of it LOD\" is tables, geometry, instances and LOD state: what the scheme "
+        "adds over what every scheme holds. Capture buffers (measurement read-backs) are counted apart, outside "
+        "the total; driver-internal memory is not seen. Host peak: the process's peak resident set during the "
+        "case.");
+    w.table(memory, "memory", true);
+  }
 
   w.heading(2, "Every case", "cases");
   std::vector<std::string> omitted;

@@ -14,6 +14,7 @@
 #include "config/config.h"
 #include "metrics/coverage.h"
 #include "number_text.h"
+#include "results/memory_json.h"
 #include "schemes/plugins.h"
 #include "schemes/registry.h"
 #include "shaders/shared.h"
@@ -185,6 +186,7 @@ json caseSummary(const CaseResult& r) {
     for (const auto& [k, v] : r.lodState.items()) out[k] = v;
   if (r.energy.is_object())
     for (const auto& [k, v] : r.energy.items()) out[k] = v;
+  out["memory"] = r.memory.is_object() ? r.memory : memoryUnknownJson("not recorded by the case's run");
   if (r.metrics.empty()) return out;
   // Per metric: statistics over the measured frames where it is available.
   std::map<std::string, std::vector<double>> series;

@@ -42,6 +42,9 @@ struct CaseResult {
   // Energy per frame (replay/energy_pass.h energyJson): {"energy_j_per_frame", "energy_reason"},
   // merged into the case summary; null where the case never reached the pass.
   nlohmann::json energy;
+  // Device memory of the case's renderer by resource and the host's peak (results/memory_json.h),
+  // the summary's "memory"; null where the case never reached its end.
+  nlohmann::json memory;
 };
 
 void writeFileAtomic(const std::string& path, const std::string& contents);

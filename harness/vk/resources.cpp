@@ -19,7 +19,7 @@ static uint32_t findMemoryType(Context& ctx, uint32_t bits, VkMemoryPropertyFlag
   throw std::runtime_error("no Vulkan memory type with the required properties");
 }
 
-Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, MemoryTag tag) {
   Buffer b;
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
@@ -38,16 +38,18 @@ Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, b
   VkDeviceMemory memory;
   VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
   b.memory = vk::Unique(ctx.device, memory);
+  b.charge = MemoryCharge(tag, req.size);
   VK_CHECK(vkBindBufferMemory(ctx.device, buffer, memory, 0));
   b.size = size;
   if (hostVisible) VK_CHECK(vkMapMemory(ctx.device, memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;
 }
 
-Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
-  Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
+                            MemoryTag tag) {
+  Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging, tag.account});
   std::memcpy(staging.mapped, data, size_t(size));
-  Buffer b = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+  Buffer b = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, tag);
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, 0, size};
     vkCmdCopyBuffer(cmd, staging.buffer, b.buffer, 1, &region);
@@ -56,13 +58,13 @@ Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, V
 }
 
 Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect) {
+                  VkImageAspectFlags aspect, MemoryTag tag, uint32_t mipLevels) {
   Image img;
   VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   ii.imageType = VK_IMAGE_TYPE_2D;
   ii.format = format;
   ii.extent = {w, h, 1};
-  ii.mipLevels = 1;
+  ii.mipLevels = mipLevels;
   ii.arrayLayers = 1;
   ii.samples = VK_SAMPLE_COUNT_1_BIT;
   ii.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -79,23 +81,25 @@ Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImage
   VkDeviceMemory memory;
   VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
   img.memory = vk::Unique(ctx.device, memory);
+  img.charge = MemoryCharge(tag, req.size);
   VK_CHECK(vkBindImageMemory(ctx.device, image, memory, 0));
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = image;
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vi.format = format;
-  vi.subresourceRange = {aspect, 0, 1, 0, 1};
+  vi.subresourceRange = {aspect, 0, mipLevels, 0, 1};
   VkImageView view;
   VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
   img.view = vk::Unique(ctx.device, view);
   img.format = format;
   img.width = w;
   img.height = h;
+  img.mipLevels = mipLevels;
   return img;
 }
 
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes) {
-  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging});
   std::memcpy(staging.mapped, data, size_t(bytes));
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,

@@ -7,14 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "vk/gpu_memory.h"
 #include "vk/unique.h"
 
 namespace lb {
 
 struct Context;
 
-// Members in creation order, so the object is released before the memory bound to it.
+// Members in creation order, so the object is released before the memory bound to it. `charge`
+// holds the allocation's bytes against its tag (vk/gpu_memory.h) while the memory lives.
 struct Buffer {
+  MemoryCharge charge;
   vk::Unique<VkDeviceMemory> memory;
   vk::Unique<VkBuffer> buffer;
   VkDeviceSize size = 0;
@@ -22,21 +25,26 @@ struct Buffer {
 };
 
 struct Image {
+  MemoryCharge charge;
   vk::Unique<VkDeviceMemory> memory;
   vk::Unique<VkImage> image;
   vk::Unique<VkImageView> view;
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
+  uint32_t mipLevels = 1;
 };
 
-// hostVisible: HOST_VISIBLE|COHERENT and mapped; otherwise DEVICE_LOCAL.
-Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
-// Device-local buffer filled through a staging copy.
-Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
+// hostVisible: HOST_VISIBLE|COHERENT and mapped; otherwise DEVICE_LOCAL. Every helper charges the
+// allocation to `tag` (vk/gpu_memory.h): what it holds and whose it is.
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, MemoryTag tag = {});
+// Device-local buffer filled through a staging copy (the staging charged as Staging to tag's account).
+Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
+                            MemoryTag tag = {});
 
+// mipLevels > 1: a full or partial mip chain; the view covers every level.
 Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect);
-// Uploads tightly packed texels and leaves the image in SHADER_READ_ONLY_OPTIMAL.
+                  VkImageAspectFlags aspect, MemoryTag tag = {}, uint32_t mipLevels = 1);
+// Uploads tightly packed texels of level 0 and leaves the image in SHADER_READ_ONLY_OPTIMAL.
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes);
 
 // Nearest-filtered (or linear) sampler clamped to the edge.
