@@ -46,6 +46,7 @@ json measurementInputs(const Config& c) {
   json measure = {{"every", c.measure.every}, {"passes", passes}, {"diff_threshold", c.measure.diffThreshold}};
   // Named only when not the default, so digests of earlier sweeps still match.
   if (c.measure.compute != "auto") measure["compute"] = c.measure.compute;
+  if (c.measure.flipPpd != LB_FLIP_DEFAULT_PPD) measure["flip_ppd"] = c.measure.flipPpd;
   json j = {{"grid", c.grid},
             {"fps", c.fps},
             {"warmup_frames", c.warmupFrames},

@@ -112,9 +112,9 @@ static void parseImageModes(const ConfigReader& r, const json& modes, Config& c)
   if (!modes.is_array()) r.fail("/images/modes", "expected an array of image modes");
   for (size_t i = 0; i < modes.size(); ++i) {
     std::string m = r.string(modes[i], "/images/modes/" + std::to_string(i));
-    if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks")
+    if (m != "shaded" && m != "heatmap" && m != "wireframe" && m != "error" && m != "cracks" && m != "flip")
       r.fail("/images/modes/" + std::to_string(i),
-             "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks");
+             "'" + printable(m) + "' is not one of shaded, heatmap, wireframe, error, cracks, flip");
     c.images.modes.push_back(m);
   }
 }

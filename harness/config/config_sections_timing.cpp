@@ -60,7 +60,7 @@ void parseEnergySection(const ConfigReader& r, const json& j, Config& c) {
 void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
   if (j.contains("measure")) {
     const json& me = j["measure"];
-    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold", "compute"});
+    r.onlyKeys(me, "/measure", {"every", "passes", "diff_threshold", "compute", "flip_ppd"});
     c.measure.every = me.contains("every") ? r.integer(me["every"], "/measure/every", 0, 1000000) : 10;
     if (me.contains("passes")) {
       if (!me["passes"].is_array()) r.fail("/measure/passes", "expected an array of pass names");
@@ -80,6 +80,7 @@ void parseMeasureSection(const ConfigReader& r, const json& j, Config& c) {
       if (c.measure.compute != "auto" && c.measure.compute != "gpu" && c.measure.compute != "cpu")
         r.fail("/measure/compute", "'" + printable(c.measure.compute) + "' is not one of auto, gpu, cpu");
     }
+    if (me.contains("flip_ppd")) c.measure.flipPpd = r.number(me["flip_ppd"], "/measure/flip_ppd", 1, 1000);
   }
 }
 

@@ -3,6 +3,8 @@
 #include <set>
 #include <string>
 
+#include "shaders/flip_params.h"
+
 namespace lb {
 
 struct MeasureSpec {
@@ -13,6 +15,9 @@ struct MeasureSpec {
   // on the device and reads back only numbers; "cpu" reads images back and reduces them on the host;
   // "auto" picks the faster of the two for the device (measureOnGpu).
   std::string compute = "auto";
+  // FLIP's viewing distance in pixels per degree of visual angle (metrics/flip.h), for the frames
+  // the image pass measures.
+  double flipPpd = LB_FLIP_DEFAULT_PPD;
   bool on(const std::string& pass) const { return every > 0 && passes.count(pass) > 0; }
 };
 const std::set<std::string>& allMeasurePasses();

@@ -107,29 +107,32 @@ namespace {
 struct Plane {
   int w = 0, h = 0;
   std::vector<double> v;
-  double at(int x, int y) const {  // borders repeat the edge pixel
-    x = std::clamp(x, 0, w - 1);
-    y = std::clamp(y, 0, h - 1);
-    return v[size_t(y) * size_t(w) + size_t(x)];
-  }
 };
 
-// Separable filter: kx along rows, then ky along columns.
+// Separable filter: kx along rows, then ky along columns; borders repeat the edge pixel. Taps are
+// summed in kernel order for every pixel (the GPU pass sums in the same order).
 Plane filter(const Plane& in, const std::vector<double>& kx, const std::vector<double>& ky) {
-  const int rx = int(kx.size()) / 2, ry = int(ky.size()) / 2;
-  Plane tmp{in.w, in.h, std::vector<double>(in.v.size())}, out = tmp;
-  for (int y = 0; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
+  const int rx = int(kx.size()) / 2, ry = int(ky.size()) / 2, w = in.w, h = in.h;
+  Plane tmp{w, h, std::vector<double>(in.v.size())}, out = tmp;
+  std::vector<double> row(size_t(w + 2 * rx));
+  for (int y = 0; y < h; ++y) {
+    const double* src = &in.v[size_t(y) * size_t(w)];
+    for (int x = -rx; x < w + rx; ++x) row[size_t(x + rx)] = src[std::clamp(x, 0, w - 1)];
+    double* dst = &tmp.v[size_t(y) * size_t(w)];
+    for (int x = 0; x < w; ++x) {
       double s = 0;
-      for (int i = -rx; i <= rx; ++i) s += kx[size_t(i + rx)] * in.at(x + i, y);
-      tmp.v[size_t(y) * size_t(in.w) + size_t(x)] = s;
+      for (size_t i = 0; i < kx.size(); ++i) s += kx[i] * row[size_t(x) + i];
+      dst[x] = s;
     }
-  for (int y = 0; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
-      double s = 0;
-      for (int i = -ry; i <= ry; ++i) s += ky[size_t(i + ry)] * tmp.at(x, y + i);
-      out.v[size_t(y) * size_t(in.w) + size_t(x)] = s;
+  }
+  for (int y = 0; y < h; ++y) {
+    double* dst = &out.v[size_t(y) * size_t(w)];
+    for (size_t i = 0; i < ky.size(); ++i) {
+      const double k = ky[i];
+      const double* src = &tmp.v[size_t(std::clamp(y + int(i) - ry, 0, h - 1)) * size_t(w)];
+      for (int x = 0; x < w; ++x) dst[x] += k * src[x];
     }
+  }
   return out;
 }
 
@@ -143,10 +146,15 @@ struct Prepared {
 Prepared prepare(const RgbaImage& img, const FlipKernels& k) {
   const int w = img.width, h = img.height;
   const size_t n = size_t(w) * size_t(h);
+  static const std::array<double, 256> linear = [] {
+    std::array<double, 256> t{};
+    for (int b = 0; b < 256; ++b) t[size_t(b)] = srgbToLinear(b);
+    return t;
+  }();
   Plane y{w, h, std::vector<double>(n)}, cx = y, cz = y;
   for (size_t i = 0; i < n; ++i) {
-    std::array<double, 3> o = xyzToYcxcz(linearRgbToXyz(
-        {srgbToLinear(img.px[i * 4]), srgbToLinear(img.px[i * 4 + 1]), srgbToLinear(img.px[i * 4 + 2])}));
+    std::array<double, 3> o =
+        xyzToYcxcz(linearRgbToXyz({linear[img.px[i * 4]], linear[img.px[i * 4 + 1]], linear[img.px[i * 4 + 2]]}));
     y.v[i] = o[0], cx.v[i] = o[1], cz.v[i] = o[2];
   }
   Plane fy = filter(y, k.achromatic, k.achromatic), fcx = filter(cx, k.redGreen, k.redGreen);

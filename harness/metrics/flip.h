@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "metrics/image_metrics.h"
+#include "shaders/flip_params.h"
 
 namespace lb {
 
-// The paper's viewing condition: a 0.7 m wide 3840-pixel display seen from 0.7 m,
-// 3840 / 0.7 x 0.7 x pi / 180 pixels per degree.
-constexpr double kFlipDefaultPpd = 67.0206432300439;
+// The paper's viewing condition (shaders/flip_params.h).
+constexpr double kFlipDefaultPpd = LB_FLIP_DEFAULT_PPD;
 
 // The filters of one viewing distance, as 1D kernels (every filter of the paper is separable or a
 // sum of separable ones), each of 2 r + 1 taps, index r the centre.

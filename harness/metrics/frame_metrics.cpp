@@ -43,6 +43,9 @@ std::vector<std::string> metricColumns() {
     for (const SchemeCounter& counter : s->info().counters) c.push_back(counter.frameKey);
   // Newer columns go last, so the earlier ones keep their positions.
   for (const char* n : {"coverage_missing_px", "coverage_extra_px", "coverage_truth_px"}) c.push_back(n);
+  for (const char* n :
+       {"flip_mean", "flip_p95", "pop2_mean", "pop2_p99", "pop2_changed", "pop3_mean", "pop3_p99", "pop3_changed"})
+    c.push_back(n);
   return c;
 }
 

@@ -21,6 +21,7 @@ struct FrameMetrics {
   RgbaImage shaded, reference;  // kept for crack masks and image strips; reference = ground truth
   std::vector<float> errorMap;
   std::vector<uint8_t> crackMask;
+  std::vector<float> flipMap;  // per-pixel FLIP against the truth (metrics/flip.h), where the image pass ran
   std::map<std::string, std::string> unavailable;  // pass -> why the device cannot run it (its values are null)
   // Wall seconds of each measurement pass on this frame (run.json measure_costs, the report's
   // context table): where a measured frame's time goes.

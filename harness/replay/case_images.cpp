@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "metrics/cracks.h"
+#include "metrics/flip.h"
 #include "render/image_io.h"
 #include "replay/lod_replay.h"
 #include "replay/run_case.h"
@@ -44,6 +45,23 @@ static std::vector<uint8_t> crackMask(const CaseImageInputs& in, int frame, cons
   FrameMetrics m = measureFrame(in.ctx, in.renderer, in.scheme, in.renderer.params(), in.terrain, in.terrainKey, one,
                                 in.refs, frame, in.pose(std::max(0, frame - 1)), in.pose(frame));
   return m.crackMask;
+}
+
+// The measured FLIP map of `frame` at the case's resolution (metrics/flip.h), as a picture.
+static std::vector<uint8_t> flipPicture(const CaseImageInputs& in, int frame, const std::map<int, FrameMetrics>& kept) {
+  auto k = kept.find(frame);
+  std::vector<float> map;
+  if (k != kept.end() && !k->second.flipMap.empty()) {
+    map = k->second.flipMap;
+  } else {
+    MeasureSpec one = in.config.measure;
+    one.every = 1;
+    one.passes = {"image"};
+    map = measureFrame(in.ctx, in.renderer, in.scheme, in.renderer.params(), in.terrain, in.terrainKey, one, in.refs,
+                       frame, in.pose(std::max(0, frame - 1)), in.pose(frame))
+              .flipMap;
+  }
+  return flipImage(map, in.c.width, in.c.height).px;
 }
 
 std::vector<std::string> writeCaseImages(const CaseImageInputs& in, const std::vector<int>& frames,
@@ -96,6 +114,9 @@ std::vector<std::string> writeCaseImages(const CaseImageInputs& in, const std::v
         std::vector<uint8_t> mask = crackMask(in, frame, kept);
         if (mask.empty()) continue;
         px = crackMaskImage({w, h, shadedPx()}, scaleNearest(mask, c.width, c.height, 1, w, h)).px;
+      } else if (mode == "flip") {
+        // Measured at the case's own resolution (a perceptual error depends on the pixel size), scaled up.
+        px = scaleNearest(flipPicture(in, frame, kept), c.width, c.height, 4, w, h);
       } else if (mode == "shaded") {
         px = shadedPx();
       } else {

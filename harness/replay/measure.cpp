@@ -7,6 +7,7 @@
 #include "error.h"
 #include "metrics/coverage.h"
 #include "metrics/cracks.h"
+#include "metrics/flip.h"
 #include "metrics/histogram_stats.h"
 #include "metrics/mesh_cracks.h"
 #include "render/image_io.h"
@@ -64,7 +65,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   auto lap = [&](const char* pass) {  // a pass that did not run (off) is not charged
     auto now = std::chrono::steady_clock::now();
     const std::string p = pass;
-    if (spec.on(p) || p == "render" || p == "ray_cast" || (p == "setup" && now - last > std::chrono::microseconds(100)))
+    if (spec.on(p) || p == "render" || p == "ray_cast" || (p == "flip" && spec.on("image")) ||
+        (p == "setup" && now - last > std::chrono::microseconds(100)))
       m.costs[pass] += std::chrono::duration<double>(now - last).count();
     last = now;
   };
@@ -174,6 +176,16 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("img_mad", ie.meanAbsDiff);
     set("img_frac_over", ie.fractionOver);
     lap("image");
+    // FLIP of the frame against the truth as a viewer sees both, clear pixels as sky (metrics/flip.h).
+    if (g && m.shaded.px.empty()) {
+      m.shaded = g->readImage(g->shaded);
+      m.reference = g->readImage(g->truth);
+    }
+    m.flipMap = flipMap(asSeen(m.reference), asSeen(m.shaded), spec.flipPpd);
+    FlipStats fs = flipStats(m.flipMap);
+    set("flip_mean", fs.mean);
+    set("flip_p95", fs.p95);
+    lap("flip");
   }
   if (spec.on("cracks") && instanced) {
     // The drawn mesh, captured by the histogram pass (run for it here when the histogram is off).

@@ -221,6 +221,7 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     m.reference = {};
     m.errorMap.clear();
     m.crackMask.clear();
+    m.flipMap.clear();
     result.metrics.push_back(std::move(m));
     if (progress) progress->frame(++done, measuredCount);
   };
