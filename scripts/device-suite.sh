@@ -3,9 +3,11 @@
 # (-DLODBENCH_STATIC_RUNTIME=ON). One shard per workload (`run --shard k/W` gives whole workloads,
 # so every scheme of a workload is timed on one GPU); one worker per GPU takes the next shard not
 # yet taken, so long and short workloads balance. An interleaved shard writes its cases after its
-# last round, so a deadline stops workers between shards and kills only a shard that would not end
-# in time (SIGINT: it keeps nothing, the next call runs it anew). Call again with the same ROOT to
-# go on; "merge" joins the finished shards, writes verdict.json and the report.
+# last round, so a deadline stops workers between shards and stops (SIGINT) a shard that would not
+# end in time: it keeps its cases' searches (searches/ in the shard's folder), and the next call
+# runs only their timing and measurement again. Call again with the same ROOT to go on (each
+# shard's log grows by the calls); "merge" joins the finished shards, writes verdict.json and the
+# report.
 # Usage: scripts/device-suite.sh BUILD_DIR ROOT [CONFIG] [--gpus N] [--deadline S] [--first REGEX]
 #        scripts/device-suite.sh BUILD_DIR ROOT merge
 #   CONFIG      default configs/suite/gpu-h100.json; written once to ROOT/config.json by
@@ -61,7 +63,7 @@ worker() {
     start=$(date +%s)
     rc=0
     timeout -s INT -k 30 "$left" "$LODBENCH" run "$root/config.json" --out "$root/shard-$k" --shard "$k/$W" \
-      --device "$g" >"$root/shard-$k.log" 2>&1 || rc=$?
+      --device "$g" >>"$root/shard-$k.log" 2>&1 || rc=$?
     # 0: every case ok; 1: ended with failed cases (kept, the verdict names them); 130: stopped.
     if (( rc == 0 || rc == 1 )) && grep -q '^lodbench: [0-9]* ok (' "$root/shard-$k.log"; then touch "$root/shard-$k.done"; fi
     echo "gpu $g: shard $k/$W (${workloads[$k]}): rc $rc, $(( $(date +%s) - start )) s$([[ -f $root/shard-$k.done ]] && echo , done)"

@@ -13,6 +13,7 @@
 #include "render/lod_state.h"
 #include "render/renderer.h"
 #include "replay/case_images.h"
+#include "replay/case_search.h"
 #include "replay/energy_pass.h"
 #include "replay/lod_replay.h"
 #include "replay/matched.h"
@@ -81,24 +82,8 @@ json stageCostsJson() {
   return out;
 }
 
-// A matched search's record (docs/results-format.md, matched): every evaluation, those that
-// could not run with their reason.
-static json matchJson(const Config& config, const MatchResult& m) {
-  json out = {
-      {"metric", config.match.metric}, {"target", config.match.value}, {"param", m.param},        {"value", m.value},
-      {"achieved", m.achieved},        {"evaluations", m.evaluations}, {"reachable", m.reachable}};
-  json trials = json::array();
-  for (const MatchTrial& t : m.trials) {
-    json tj = {{"value", t.value}, {"achieved", std::isnan(t.achieved) ? json() : json(t.achieved)}};
-    if (!t.reason.empty()) tj["reason"] = t.reason;
-    trials.push_back(tj);
-  }
-  out["trials"] = trials;
-  return out;
-}
-
 CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
-                   CaseProgress* progress, ReferenceCache& refs) {
+                   CaseProgress* progress, ReferenceCache& refs, const std::string& searchCheckpoint) {
   using Phase = CaseProgress::Phase;
   auto t0 = std::chrono::steady_clock::now();
   // The case's own peak host memory: the high-water mark starts at the resident set now.
@@ -115,28 +100,11 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   CameraPath path = loadCameraPath(c.path);
   RenderSettings settings{c.width, c.height, c.grid, config.testSlowdown};
   ParamValues params = c.params;
-  if (config.match.on() && !c.tune.empty()) {
-    // Each scheme at its best configuration: its tuning space, every configuration matched and
-    // timed, the cheapest that reaches the target drawn (replay/matched.h tuneAndMatch).
-    TuneResult t = tuneAndMatch(ctx, *scheme, params, terrain, path, config, c);
-    params = t.params;
-    settings.grid = result.grid = t.grid;
-    result.matched = matchJson(config, t.match);
-    json trials = json::array();
-    for (const TuneTrial& tr : t.trials)
-      trials.push_back({{"settings", tr.settings},
-                        {"match", matchJson(config, tr.match)},
-                        {"cost_ms", std::isnan(tr.costMs) ? json() : json(tr.costMs)},
-                        {"seconds", tr.seconds}});
-    result.matched["tuned"] = {{"space", c.tune},
-                               {"chosen", t.trials[size_t(t.chosen)].settings},
-                               {"budget", t.budget},
-                               {"evaluations", t.evaluations},
-                               {"configurations", trials}};
-  } else if (config.match.on()) {
-    MatchResult m = matchParameter(ctx, *scheme, params, terrain, path, config, c);
-    if (!m.param.empty()) params[m.param] = m.value;
-    result.matched = matchJson(config, m);
+  if (config.match.on()) {
+    CaseSearch search = searchCase(ctx, *scheme, params, terrain, path, config, c, searchCheckpoint);
+    params = search.params;
+    if (search.grid > 0) settings.grid = result.grid = search.grid;
+    result.matched = std::move(search.matched);
   }
   result.params = params;
   Renderer renderer(ctx, terrain, settings);

@@ -25,8 +25,10 @@ void requestStop();
 void clearStop();  // a new sweep starts unstopped
 
 // One case on an existing device context (used by tests and the sweep); progress may be null.
+// searchCheckpoint: where a matched case keeps its search for a later invocation
+// (replay/case_search.h); empty: nowhere.
 CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std::string& imageDir,
-                   CaseProgress* progress, ReferenceCache& refs);
+                   CaseProgress* progress, ReferenceCache& refs, const std::string& searchCheckpoint = "");
 
 // Load-time stage costs per terrain label of the cases run since clearStageCosts (run.json
 // costs.terrains).

@@ -106,6 +106,7 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   if (!previous.is_null()) checkSameDevice(totals.dir, previous, context);
   fs::create_directories(totals.dir + "/cases");
   fs::create_directories(totals.dir + "/images");
+  if (config.match.on()) fs::create_directories(totals.dir + "/searches");
   removeStaleTemps(totals.dir);
   if (options.outDir.empty()) pointLatestAt(totals.dir);
   std::vector<std::string> ids;
@@ -132,7 +133,9 @@ RunTotals runSweep(const Config& config, const RunOptions& options) {
   // One case under `cfg`: its result, a failure or skip recorded; false when interrupted.
   auto attempt = [&](const Case& c, const Config& cfg, SweepProgress* p, CaseResult& r) {
     try {
-      r = runCase(ctx, c, cfg, totals.dir + "/images", p, refs);
+      // A matched case's search outlives an interrupted invocation (replay/case_search.h).
+      const std::string search = cfg.match.on() ? totals.dir + "/searches/" + c.id + ".json" : "";
+      r = runCase(ctx, c, cfg, totals.dir + "/images", p, refs, search);
     } catch (const Interrupted&) {
       totals.interrupted = true;
       return false;
