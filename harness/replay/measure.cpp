@@ -57,7 +57,7 @@ static GpuErrorStats errorStats(const std::vector<float>& map) {
 FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const ParamValues& params,
                           const Heightfield& terrain, const std::string& terrainKey, const MeasureSpec& spec,
                           ReferenceCache& refs, int frame, const CameraPose& previous, const CameraPose& current,
-                          const RgbaImage* popBefore, bool keepPixels) {
+                          const RgbaImage* popBefore, bool keepPixels, const OlderLod* older) {
   FrameMetrics m;
   m.frame = frame;
   // Each pass's wall time, charged at the pass's end (lap): where a measured frame's time goes.
@@ -218,6 +218,23 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("pop_mean", pop.mean);
     set("pop_p99", pop.p99);
     set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
+    // Lags 2 and 3: null where the path has no frame t - k, as lag 1 on frame 0.
+    for (int k = 2; older && k <= kPopLags; ++k) {
+      const size_t i = size_t(k - 2);
+      const bool have = frame >= k && (i < older->images.size() || i < older->poses.size());
+      PopResult p{kNan, kNan, 0};
+      if (have && i < older->images.size()) {
+        ImageError e = g ? g->reduce.compare(g->reduce.upload(older->images[i]), g->shaded, 16, false).e
+                         : compareImages(older->images[i], m.shaded);
+        p = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
+      } else if (have) {
+        p = measurePopping(r, older->poses[i], current, g);
+      }
+      const std::string key = "pop" + std::to_string(k);
+      set(key + "_mean", p.mean);
+      set(key + "_p99", p.p99);
+      set(key + "_changed", have ? double(p.changed) : kNan);
+    }
     lap("popping");
   }
   // Saturation is a tessellation level at its cap, where levels are decided per patch (the

@@ -18,6 +18,7 @@
 #include "replay/lod_replay.h"
 #include "replay/matched.h"
 #include "replay/measure.h"
+#include "replay/settle.h"
 #include "replay/timing_passes.h"
 #include "results/memory_json.h"
 #include "schemes/registry.h"
@@ -196,9 +197,20 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   if (stateful) {
     timedLod = timedInstances(result.frames, frames);
     LodReplay replay(renderer, pose, timedLod);
+    auto isMeasured = [&](int f) { return ms.every > 0 && f < frames && f % ms.every == 0; };
+    std::map<int, OlderLod> older;  // popping at lags 2 and 3: earlier states drawn from a measured frame's view
     for (int f = 0; f < frames; ++f) {
       if (gStop) throw Interrupted();
-      const bool measured = ms.every > 0 && f % ms.every == 0;
+      const bool measured = isMeasured(f);
+      // Before frame f's update the state is frame f - 1's: lag k of frame f - 1 + k.
+      for (int k = 2; ms.on("popping") && f >= 1 && k <= kPopLags; ++k)
+        if (int t = f - 1 + k; isMeasured(t)) {
+          FrozenLod frozen(renderer);
+          OlderLod& o = older[t];
+          o.images.resize(std::max(o.images.size(), size_t(k - 1)));
+          o.images[size_t(k - 2)] = {renderer.settings().width, renderer.settings().height,
+                                     renderer.renderImage(pose(t), pose(t), RenderMode::Shaded)};
+        }
       RgbaImage before;  // popping: the previous state drawn from this frame's view
       if (measured && f > 0 && ms.on("popping")) {
         FrozenLod frozen(renderer);
@@ -209,15 +221,23 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
       if (!measured) continue;
       FrozenLod frozen(renderer);
       keep(measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
-                        pose(std::max(0, f - 1)), pose(f), before.px.empty() ? nullptr : &before));
+                        pose(std::max(0, f - 1)), pose(f), before.px.empty() ? nullptr : &before, false,
+                        older.count(f) ? &older[f] : nullptr));
+      older.erase(f);
     }
   } else if (ms.every > 0) {
     for (int f = 0; f < frames; f += ms.every) {
       if (gStop) throw Interrupted();
+      OlderLod older;  // popping at lags 2 and 3: the LOD cameras of frames f - 2 and f - 3
+      for (int k = 2; k <= kPopLags && f - k >= 0; ++k) older.poses.push_back(pose(f - k));
       keep(measureFrame(ctx, renderer, *scheme, renderer.params(), terrain, referenceKey(c), ms, refs, f,
-                        pose(std::max(0, f - 1)), pose(f)));
+                        pose(std::max(0, f - 1)), pose(f), nullptr, false, &older));
     }
   }
+  // The LOD's lag behind the camera over every frame of the path (replay/settle.h).
+  if (ms.on("error"))
+    result.settle =
+        stateful ? settleJson(settleSeries(renderer, pose, frames, timedLod), "updates") : settledByCamera(frames);
   if (progress) progress->phase(Phase::Images);
 
   // Images for people are separate passes after the timed and measured frames, never inside them

@@ -186,6 +186,7 @@ json caseSummary(const CaseResult& r) {
     for (const auto& [k, v] : r.lodState.items()) out[k] = v;
   if (r.energy.is_object())
     for (const auto& [k, v] : r.energy.items()) out[k] = v;
+  if (r.settle.is_object()) out["settle"] = r.settle;
   out["memory"] = r.memory.is_object() ? r.memory : memoryUnknownJson("not recorded by the case's run");
   if (r.metrics.empty()) return out;
   // Per metric: statistics over the measured frames where it is available.

@@ -42,6 +42,9 @@ struct CaseResult {
   // Energy per frame (replay/energy_pass.h energyJson): {"energy_j_per_frame", "energy_reason"},
   // merged into the case summary; null where the case never reached the pass.
   nlohmann::json energy;
+  // How long the LOD lags the camera (replay/settle.h settleJson), the summary's "settle"; null where
+  // the error pass did not run.
+  nlohmann::json settle;
   // Device memory of the case's renderer by resource and the host's peak (results/memory_json.h),
   // the summary's "memory"; null where the case never reached its end.
   nlohmann::json memory;
