@@ -235,9 +235,15 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
     }
   }
   // The LOD's lag behind the camera over every frame of the path (replay/settle.h).
-  if (ms.on("error"))
+  if (ms.on("error")) {
+    const auto settleStart = std::chrono::steady_clock::now();
     result.settle =
         stateful ? settleJson(settleSeries(renderer, pose, frames, timedLod), "updates") : settledByCamera(frames);
+    // Its cost spread over the measured frames, as the GPU path's setup is (measure_costs_ms.passes.settle).
+    const double settleS = secondsSince(settleStart);
+    for (FrameMetrics& m : result.metrics)
+      if (stateful) m.costs["settle"] = settleS / double(result.metrics.size());
+  }
   if (progress) progress->phase(Phase::Images);
 
   // Images for people are separate passes after the timed and measured frames, never inside them

@@ -24,7 +24,10 @@ struct ErrorKind {
   const char* axis;   // x-axis title: exactly what is plotted
 };
 constexpr ErrorKind kErrors[] = {{"err_mean_px", "mean error", "mean error (px), averaged over measured frames"},
-                                 {"err_p95_px", "p95 error", "p95 error (px), averaged over measured frames"}};
+                                 {"err_p95_px", "p95 error", "p95 error (px), averaged over measured frames"},
+                                 {"flip_mean", "FLIP",
+                                  "mean FLIP against the ray-cast truth (0..1), averaged over "
+                                  "measured frames"}};
 
 struct Cost {
   const char* id;

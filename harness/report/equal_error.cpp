@@ -96,6 +96,14 @@ std::string energyRanking(std::vector<EnergyFigure> f) {
   return out;
 }
 
+// The mean popping at lags 1, 2 and 3 (replay/popping.h), "–" for a lag not measured.
+static std::string poppingLags(const ReportCase& c) {
+  std::string out;
+  for (const char* k : {"pop_mean", "pop2_mean", "pop3_mean"})
+    out += (out.empty() ? "" : " / ") + formatValue(summaryStat(c.summary, k, "mean"));
+  return out;
+}
+
 EqualErrorSection equalErrorSection(const ReportRun& run) {
   EqualErrorSection out;
   std::vector<Row> rows;
@@ -117,7 +125,11 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
       " (config \"match\"); each row is the case run at the value found, cheapest GPU median first. LOD ms and "
       "draw ms split the frame where the draw path decides its LOD apart from drawing (instanced grid: the CPU "
       "selection is lod_cpu_ms, outside the GPU time; GPU-indirect: the compute passes); on the tessellation path "
-      "the LOD decision runs inside the draw. The non-degenerate share leaves out the zero-area triangles (morph "
+      "the LOD decision runs inside the draw. FLIP mean is the perceived difference from the ray-cast truth "
+      "(LDR-FLIP, 0 identical .. 1), averaged over the measured frames; popping is the mean RGB change (0..255) "
+      "between the frame and the same view drawn with the LOD of 1, 2 and 3 frames before; lag frames is the "
+      "longest run of frames whose mean error was more than 10 % off the error of the LOD settled at that camera "
+      "(0 for a LOD of the camera alone). The non-degenerate share leaves out the zero-area triangles (morph "
       "collapses, clipmap strips) of the measured frames. GPU MiB is the device memory the case's renderer held "
       "(terrain, normal map, scheme tables, geometry, instances, LOD state, frame; capture buffers apart), \"of "
       "it LOD\" the scheme's own share (tables, geometry, instances, LOD state). Unreachable targets are marked: "
@@ -133,6 +145,9 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                       "matched parameter",
                       "search reached",
                       "error p95 px, run median",
+                      "FLIP mean",
+                      "popping lag 1 / 2 / 3",
+                      "lag frames",
                       "GPU ms median",
                       "GPU ms p95",
                       "energy J/frame",
@@ -144,8 +159,8 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                       "LOD CPU ms",
                       "triangles median",
                       "non-degenerate share"};
-  out.table.numeric = {false, false, false, false, true, true, true, true,
-                       true,  true,  true,  true,  true, true, true, true};
+  out.table.numeric = {false, false, false, false, true, true, true, true, true, true,
+                       true,  true,  true,  true,  true, true, true, true, true};
   std::vector<EnergyFigure> energies;
   std::vector<std::pair<std::string, std::string>> unmeasured;  // scheme, why
   json data = json::array();
@@ -169,6 +184,8 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
     out.table.rows.push_back(
         {textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
          textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
+         textCell(formatValue(summaryStat(c.summary, "flip_mean", "mean"))), textCell(poppingLags(c)),
+         textCell(formatValue(summaryStat(c.summary, "settle", "frames"))),
          textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian) : std::nullopt)),
          textCell(formatValue(gpu95)),
          textCell(formatValue(energy ? std::optional<double>(energy->mean) : std::nullopt)),

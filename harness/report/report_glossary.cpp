@@ -84,6 +84,10 @@ const Definition kDefinitions[] = {
     {"SSIM",
      "structural similarity of the shaded frame to the ray-cast truth (1 = identical): mean over measured "
      "frames."},
+    {"FLIP mean",
+     "LDR-FLIP of the frame against the ray-cast truth (0 identical .. 1), both seen with the sky where there is "
+     "no terrain, at measure.flip_ppd pixels per degree: the mean over pixels, then over measured frames."},
+    {"FLIP p95", "the 95th percentile of a frame's FLIP over pixels: mean over measured frames."},
     {"cracks px max",
      "pixels where the background shows through although the truth has terrain: the largest "
      "count over measured frames (0 = watertight)."},
@@ -97,6 +101,16 @@ const Definition kDefinitions[] = {
     {"popping mean",
      "mean absolute RGB difference (0-255) between the frame drawn with the previous frame's LOD "
      "and with its own: mean over measured frames."},
+    {"popping lag 2",
+     "as popping mean, against the LOD of 2 frames before (a LOD flipping between two states every frame pops at "
+     "lag 1, not at lag 2): mean over measured frames from frame 2 on."},
+    {"popping lag 1 / 2 / 3", "popping mean, popping lag 2 and popping lag 3 of the case (as in Every case)."},
+    {"popping lag 3",
+     "as popping mean, against the LOD of 3 frames before: mean over measured frames from frame 3 on."},
+    {"lag frames",
+     "the longest run of consecutive frames (every frame of the path, not only measured ones) whose mean error was "
+     "more than 10 % off the error of the LOD settled at that frame's camera: how long the LOD lags a camera move "
+     "(0 for a LOD decided from the current camera alone)."},
     {"surplus",
      "triangles / the triangles errbound needs for the same p95 error on the same frame: mean over "
      "measured frames (above 1: more than errbound spends)."},

@@ -30,7 +30,13 @@ const Note kNotes[] = {
     {"popping", "popping",
      "mean (and p99) absolute RGB difference, 0-255, between the frame drawn with the previous frame's LOD and "
      "with the live LOD: the change a viewer sees caused only by LOD changes. 0 = none; frame 0 has no previous "
-     "frame."},
+     "frame. Lags 2 and 3 compare with the LOD of 2 and 3 frames before: a LOD that flickers back and forth pops "
+     "at lag 1 but not at lag 2. Lag frames: the longest run of frames whose mean error was more than 10 % off "
+     "the error of the LOD settled at that camera, e.g. after a fast move (0 for a LOD of the camera alone)."},
+    {"flip", "FLIP",
+     "LDR-FLIP (Andersson et al. 2020): the difference a viewer perceives flipping between the frame and the "
+     "ray-cast truth at the configured viewing distance, per pixel from 0 (identical) to 1; mean and p95 per "
+     "frame, then the mean over measured frames. Lower is better."},
     {"ssim", "SSIM",
      "structural similarity of the shaded frame to the ray-cast ground truth, 1 = identical, lower = visibly "
      "different structure."},

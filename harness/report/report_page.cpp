@@ -300,6 +300,7 @@ Page buildPage(const ReportRun& run, const std::vector<Chart>& charts, const std
                                                                               {"error", "error mean px"},
                                                                               {"psnr", "PSNR dB"},
                                                                               {"ssim", "SSIM"},
+                                                                              {"flip", "FLIP mean"},
                                                                               {"cracks", "cracks px max"},
                                                                               {"popping", "popping mean"},
                                                                               {"surplus", "surplus"}})

@@ -56,10 +56,15 @@ constexpr Column kCaseColumns[] = {
     {"error p95 px", "err_p95_px", "mean"},
     {"PSNR dB", "img_psnr_db", "mean"},
     {"SSIM", "img_ssim", "mean"},
+    {"FLIP mean", "flip_mean", "mean", true},  // runs before FLIP lack these: not listed as left out
+    {"FLIP p95", "flip_p95", "mean", true},
     {"cracks px max", "cracks_pixels", "max"},
     {"missing terrain px max", "coverage_missing_px", "max"},
     {"extra terrain px max", "coverage_extra_px", "max"},
     {"popping mean", "pop_mean", "mean"},
+    {"popping lag 2", "pop2_mean", "mean", true},
+    {"popping lag 3", "pop3_mean", "mean", true},
+    {"lag frames", "settle", "frames", true},
     {"surplus", "surplus", "mean"},
     {"measured frames", "measured_frames", ""},
 };
