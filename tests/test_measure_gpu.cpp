@@ -71,6 +71,10 @@ void compareFrame(Renderer& r, const Scheme& scheme, const Heightfield& hf, cons
     } else if (k == "img_ssim") {
       EXPECT_LE(std::abs(x - y), 1e-4) << where;
       worst.ssim = std::max(worst.ssim, std::abs(x - y));
+    } else if (k == "flip_mean") {  // per pixel within 1e-4 (tests/test_gpu_flip.cpp), the mean within 1e-6
+      EXPECT_LE(std::abs(x - y), 1e-4) << where;
+    } else if (k == "flip_p95") {  // and the reduction's p95 within 2^-10 of its value
+      EXPECT_LE(std::abs(x - y), x / 1024 + 1e-4) << where;
     } else if (k.rfind("surplus", 0) == 0) {
       continue;  // below: each path against its own criterion
     } else {
@@ -200,7 +204,7 @@ TEST_F(MeasureGpuTest, RunAndCaseRecordsCarryTheCostOfEachPass) {
       EXPECT_GE(ms.get<double>(), 0.0) << pass;
       sum += ms.get<double>();
     }
-    std::set<std::string> ran = {"render", "error", "ray_cast", "image", "popping"};
+    std::set<std::string> ran = {"render", "error", "ray_cast", "image", "flip", "popping"};
     if (std::string(compute) == "gpu") ran.insert("setup");
     EXPECT_EQ(passes, ran) << compute << ": " << rj.dump();
     EXPECT_NEAR(rj["measured_frame"].get<double>(), sum, 1e-9 * sum);

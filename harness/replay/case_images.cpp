@@ -58,7 +58,7 @@ static std::vector<uint8_t> flipPicture(const CaseImageInputs& in, int frame, co
     one.every = 1;
     one.passes = {"image"};
     map = measureFrame(in.ctx, in.renderer, in.scheme, in.renderer.params(), in.terrain, in.terrainKey, one, in.refs,
-                       frame, in.pose(std::max(0, frame - 1)), in.pose(frame))
+                       frame, in.pose(std::max(0, frame - 1)), in.pose(frame), nullptr, /*keepPixels=*/true)
               .flipMap;
   }
   return flipImage(map, in.c.width, in.c.height).px;

@@ -176,13 +176,18 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("img_mad", ie.meanAbsDiff);
     set("img_frac_over", ie.fractionOver);
     lap("image");
-    // FLIP of the frame against the truth as a viewer sees both, clear pixels as sky (metrics/flip.h).
-    if (g && m.shaded.px.empty()) {
-      m.shaded = g->readImage(g->shaded);
-      m.reference = g->readImage(g->truth);
+    // FLIP of the frame against the truth as a viewer sees both, clear pixels as sky (metrics/flip.h);
+    // on the GPU path its compute passes and a reduction of the map (metrics/gpu_flip.h).
+    FlipStats fs;
+    if (g) {
+      const Buffer& map = g->flip(spec.flipPpd).run(g->truth, g->shaded);
+      GpuErrorStats s = g->reduce.errorStats(map);
+      fs = {s.mean, s.p95};
+      if (keepPixels) m.flipMap = g->readFloats(map);
+    } else {
+      m.flipMap = flipMap(asSeen(m.reference), asSeen(m.shaded), spec.flipPpd);
+      fs = flipStats(m.flipMap);
     }
-    m.flipMap = flipMap(asSeen(m.reference), asSeen(m.shaded), spec.flipPpd);
-    FlipStats fs = flipStats(m.flipMap);
     set("flip_mean", fs.mean);
     set("flip_p95", fs.p95);
     lap("flip");

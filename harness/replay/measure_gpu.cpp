@@ -72,4 +72,9 @@ std::vector<float> MeasureGpu::readFloats(const Buffer& b) {
   return v;
 }
 
+GpuFlip& MeasureGpu::flip(double ppd) {
+  if (!flip_ || flip_->ppd() != ppd) flip_ = std::make_unique<GpuFlip>(ctx_, width_, height_, ppd);
+  return *flip_;
+}
+
 }  // namespace lb

@@ -8,6 +8,7 @@
 
 #include "camera/camera_path.h"
 #include "config/measure_spec.h"
+#include "metrics/gpu_flip.h"
 #include "metrics/gpu_raycast.h"
 #include "metrics/gpu_reduce.h"
 #include "vk/resources.h"
@@ -31,6 +32,8 @@ class MeasureGpu {
   void castTruth(const CameraPose& pose);
   RgbaImage readImage(const Buffer& b);
   std::vector<float> readFloats(const Buffer& b);
+  // FLIP's passes at viewing distance `ppd` (made on first use, again for another distance).
+  GpuFlip& flip(double ppd);
 
   GpuRaycast raycast;
   GpuReduce reduce;
@@ -44,6 +47,7 @@ class MeasureGpu {
   bool haveTruth_ = false;
   CameraPose truthPose_;
   Buffer staging_;  // host-visible, for read-backs
+  std::unique_ptr<GpuFlip> flip_;
 };
 
 }  // namespace lb
