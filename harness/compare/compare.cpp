@@ -45,6 +45,7 @@ const AccuracyMetric kAccuracyMetrics[] = {{"err_mean_px", true, 1e-12},
                                            {"err_p95_px", true, 1e-12},
                                            {"img_psnr_db", false, 1e-12},
                                            {"img_ssim", false, 1e-12},
+                                           {"flip_mean", true, 1e-12},
                                            {"coverage_missing_px", true, kCoverageSlackPx},
                                            {"coverage_extra_px", true, kCoverageSlackPx}};
 

@@ -1,7 +1,7 @@
 #pragma once
 // The colour spaces FLIP's colour pipeline passes through (metrics/flip.h): sRGB, linear RGB, CIE
 // XYZ (D65), the opponent space YCxCz (linear in XYZ, so filters act on it as on light) and
-// Hunt-adjusted CIE L*a*b*, with the HyAB distance. The GPU pass (shaders/flip_color.glsl) uses the
+// Hunt-adjusted CIE L*a*b*, with the HyAB distance. The GPU passes (shaders/flip_common.glsl) use the
 // same matrices.
 #include <array>
 #include <cmath>
