@@ -431,6 +431,11 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
   CompareReport r = compareRuns(loadRun(base + "r1"), loadRun(base + "r2"), CompareOptions{});
   int instanced = 0, indirect = 0;
   for (const CaseComparison& c : r.cases) {
+    // The mesh twins are skipped cases on lavapipe (no VK_EXT_mesh_shader): no timings to split.
+    if (c.baselineStatus == "skipped") {
+      EXPECT_TRUE(c.split.empty()) << c.id;
+      continue;
+    }
     const bool isInstanced = c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0;
     if (c.id.rfind("cbt", 0) == 0) {  // GPU-indirect: the compute passes and the draw, no CPU selection
       ++indirect;
