@@ -19,6 +19,7 @@ const Scheme& sphereEdgeScheme();
 const Scheme& cdlodScheme();
 const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
+const Scheme& chunkedScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
 const Scheme& uniformCullScheme();
@@ -51,6 +52,8 @@ static std::vector<const Scheme*>& registered() {
       &sphereMsScheme(),
       &cdlodMsScheme(),
       &cbtMsScheme(),
+      // Precomputed irregular meshes (after the twins, so every earlier scheme keeps its chart style).
+      &chunkedScheme(),
       // clang-format on
   };
   return schemes;
