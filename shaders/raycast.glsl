@@ -43,6 +43,8 @@ layout(std140, binding = LB_RAYCAST_BINDING_PARAMS) uniform Params {
   ivec4 size;            // image width, height; heightfield width, height
   ivec4 grid;            // cells along x, z; pyramid levels; 1: write distances
   uvec4 levels[LB_RAYCAST_MAX_LEVELS];  // per level: offset into mip[], width, height
+  vec4 shading;                         // x: one pixel's angle (shadingPixelAngle); y: normal map levels
+  uvec4 normalLevels[LB_RAYCAST_MAX_LEVELS];  // per normal map level: offset into normals[], width, height
 };
 
 // The ray of this pixel and castRay's reciprocals.
@@ -64,6 +66,12 @@ float sqrtF(float a) {
   return r;
 }
 #endif
+
+// The level of the pixel's footprint (shaders/footprint.h) with this shader's division and root, so
+// it equals the CPU's.
+#define LB_FP_DIV(a, b) divF(a, b)
+#define LB_FP_SQRT(a) sqrtF(a)
+#include "footprint.h"
 
 // glm's matrix times vector: (m0 x + m1 y) + (m2 z + m3 w).
 real4 transform(realMat4 m, real4 v) {
@@ -204,16 +212,39 @@ vec2 mixF(vec2 a, vec2 b, float w) {
   return r;
 }
 
-// sampleNormalMap (terrain/normal_map.cpp): the texels' gradients bilinearly filtered, normalised.
-vec3 mapNormal(float x, float z) {
+// sampleNormalMap (terrain/normal_map.cpp) at one level: texel coordinate u, clamped to the edge.
+vec2 bilinear(int k, vec2 u) {
+  const uvec4 lv = normalLevels[k];
+  const ivec2 n = ivec2(lv.yz);
+  const vec2 fl = floor(u);
+  precise vec2 f = u - fl;
+  const ivec2 i0 = ivec2(fl);
+  const ivec2 a = clamp(i0, ivec2(0), n - 1), b = clamp(i0 + 1, ivec2(0), n - 1);
+  const uint o = lv.x;
+  const vec2 g00 = unpackHalf2x16(normals[o + a.y * n.x + a.x]), g10 = unpackHalf2x16(normals[o + a.y * n.x + b.x]);
+  const vec2 g01 = unpackHalf2x16(normals[o + b.y * n.x + a.x]), g11 = unpackHalf2x16(normals[o + b.y * n.x + b.x]);
+  precise vec2 s = mixF(mixF(g00, g10, f.x), mixF(g01, g11, f.x), f.y);
+  return s;
+}
+
+// Level k's texel coordinate of t (level 0's): (t + 0.5) / size0 * size_k - 0.5, t itself at level 0.
+vec2 levelCoord(int k, vec2 t) {
+  if (k == 0) return t;
+  const vec2 s0 = vec2(size.zw), sk = vec2(normalLevels[k].yz);
+  precise vec2 scaled = (t + 0.5) * sk;
+  precise vec2 u = vec2(divF(scaled.x, s0.x), divF(scaled.y, s0.y)) - 0.5;
+  return u;
+}
+
+// sampleNormalMap: the level's (and the next one's, mixed by the fraction) gradients, normalised.
+vec3 mapNormal(float x, float z, float level) {
   const ivec2 n = size.zw;
   precise vec2 t = clamp(vec2(divF(x, light.w), divF(z, light.w)), 0.0, 1.0) * vec2(n - 1);
-  const ivec2 i0 = min(ivec2(floor(t)), max(n - 2, ivec2(0)));
-  precise vec2 f = t - vec2(i0);
-  const ivec2 i1 = min(i0 + 1, n - 1);
-  const vec2 g00 = unpackHalf2x16(normals[i0.y * n.x + i0.x]), g10 = unpackHalf2x16(normals[i0.y * n.x + i1.x]);
-  const vec2 g01 = unpackHalf2x16(normals[i1.y * n.x + i0.x]), g11 = unpackHalf2x16(normals[i1.y * n.x + i1.x]);
-  precise vec2 s = mixF(mixF(g00, g10, f.x), mixF(g01, g11, f.x), f.y);
+  const float clamped = clamp(level, 0.0, shading.y - 1.0);
+  const int k0 = int(floor(clamped));
+  precise float frac = clamped - float(k0);
+  precise vec2 s = bilinear(k0, levelCoord(k0, t));
+  if (frac > 0.0) s = mixF(s, bilinear(k0 + 1, levelCoord(k0 + 1, t)), frac);
   precise vec3 v = vec3(s.x, 1.0, s.y);
   precise float len2 = v.x * v.x + v.y * v.y + v.z * v.z;
   precise vec3 unit = v * divF(1.0, sqrtF(len2));  // glm::normalize: v * (1 / sqrt(dot(v, v)))
@@ -230,8 +261,8 @@ uint unorm8(float v) {
 }
 
 // shadeTerrain (metrics/raycast_shade.cpp), terrain.frag's shaded colour, packed R, G, B, A.
-uint shade(float x, float z) {
-  const vec3 n = mapNormal(x, z);
+uint shade(float x, float z, float level) {
+  const vec3 n = mapNormal(x, z, level);
   precise float diffuse = max(n.x * light.x + n.y * light.y + n.z * light.z, 0.0);
   precise float lit = 0.25 + 0.75 * diffuse;
   precise float slope = 1.0 - n.y;
@@ -267,7 +298,8 @@ void main() {
     if (grid.w != 0) dist[i] = -1.0;
     return;
   }
-  rgba[i] = shade(float(pos.x), float(pos.z));
+  const vec3 hit = vec3(pos);
+  rgba[i] = shade(hit.x, hit.z, shadingLevel(hit, vec3(eye.xyz), shading.x, light.w, size.z, size.w));
   if (grid.w != 0) {
     precise real3 v = pos - eye.xyz;
     precise real len = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);  // glm::length

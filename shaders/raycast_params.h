@@ -4,7 +4,7 @@
 #define LB_RAYCAST_PARAMS_H
 #define LB_RAYCAST_BINDING_HEIGHTS 0   // float per heightfield sample, row-major
 #define LB_RAYCAST_BINDING_MIP 1       // every max-mipmap level, level 0 first (offsets in the params)
-#define LB_RAYCAST_BINDING_NORMALS 2   // the normal map's RG16F texels, one uint each (terrain/normal_map.h)
+#define LB_RAYCAST_BINDING_NORMALS 2   // the normal map's RG16F texels, one uint each, all levels
 #define LB_RAYCAST_BINDING_RGBA 3      // out: uint per pixel, bytes R, G, B, A
 #define LB_RAYCAST_BINDING_DISTANCE 4  // out: float per pixel, eye-to-hit distance, -1 on a miss
 #define LB_RAYCAST_BINDING_PARAMS 5    // uniform block: camera, terrain, pyramid levels

@@ -10,7 +10,7 @@
 #define LB_BINDING_SCHEME_BUF 5    // scheme storage buffer (e.g. tile adjacency)
 #define LB_BINDING_HISTOGRAM 7     // triangle-size histogram (measurement pass)
 #define LB_BINDING_SCHEME_IMAGE 6  // compute preprocessing only: the scheme texture as a storage image
-#define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, linear sampler (terrain/normal_map.h)
+#define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, all mips (terrain/normal_map.h)
 #define LB_BINDING_INSTANCES 9     // instanced-grid path: InstanceRecord per instance (render/instanced.h)
 #define LB_BINDING_MESH 10         // measurement pass: captured triangles of the instanced path (analytic cracks)
 #define LB_BINDING_LOD_STATE 11    // GPU-indirect path: the LOD state the compute passes keep across frames
@@ -70,9 +70,10 @@ struct FrameUniforms {
   glm::vec4 terrain;     // extent, grid patches per side, heightfield width, heightfield height
   glm::vec4 light;       // xyz: direction towards the light
   glm::vec4 params[LB_SCHEME_PARAM_VEC4S];
-  glm::vec4 origin;  // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
+  glm::vec4 origin;   // xy: world x, z of heightfield sample (0, 0) (Heightfield::originX/Z); zw unused
+  glm::vec4 shading;  // xyz: the view camera's position; w: one pixel's angle (shaders/footprint.h)
 };
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 16,
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 16 + 6 * 16 + 3 * 16 + LB_SCHEME_PARAM_VEC4S * 16 + 2 * 16,
               "std140 mirror");
 // Each push-constant mirror is pinned to its GLSL block's size (std430, as push constants are
 // laid out); tests/test_push_constants.cpp reads the same sizes back from the compiled SPIR-V.
@@ -107,6 +108,7 @@ layout(set = 0, binding = LB_BINDING_FRAME, std140) uniform FrameUniforms {
   vec4 light;
   vec4 params[LB_SCHEME_PARAM_VEC4S];
   vec4 origin;
+  vec4 shading;
 }
 frame;
 layout(push_constant) uniform DrawPush {

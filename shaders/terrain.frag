@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Identical shading for every scheme: per-pixel normals from the terrain's normal map (one filtered
-// fetch), one directional light.
+// Identical shading for every scheme: per-pixel normals from the terrain's normal map (one trilinear
+// fetch at the level of the pixel's footprint, footprint.h), one directional light.
 #include "common.glsl"
+#include "footprint.h"
 
 layout(constant_id = 0) const int kMode = LB_MODE_SHADED;
 // Testing only (RenderSettings::testHeightNormals): the pre-issue-13 normal, rebuilt per pixel from
@@ -19,12 +20,14 @@ vec3 heat(float level) {
   return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
 }
 
-// Texel coordinate t as terrainHeight() computes it (texel i's centre at i), so the filtered gradient
-// is the one terrainNormal() computed here before; lb::sampleNormalMap is the CPU twin.
-vec3 mapNormal(vec2 worldXZ) {
+// Texel coordinate t as terrainHeight() computes it (texel i's centre at i), so level 0's filtered
+// gradient is the one terrainNormal() computes; the level is the footprint's of this point as the
+// ray-cast truth computes it for its hit (shadingLevel); lb::sampleNormalMap is the CPU twin.
+vec3 mapNormal(vec3 world) {
   vec2 size = frame.terrain.zw;
-  vec2 t = clamp((worldXZ - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * (size - 1.0);
-  vec2 g = textureLod(normalMap, (t + 0.5) / size, 0.0).rg;
+  vec2 t = clamp((world.xz - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * (size - 1.0);
+  float level = shadingLevel(world, frame.shading.xyz, frame.shading.w, frame.terrain.x, int(size.x), int(size.y));
+  vec2 g = textureLod(normalMap, (t + 0.5) / size, level).rg;
   return normalize(vec3(g.x, 1.0, g.y));
 }
 
@@ -56,7 +59,7 @@ void main() {
     outColor = vec4(screenError(inWorld, truePoint), 0.0, 0.0, 1.0);
     return;
   }
-  vec3 n = kHeightNormals ? terrainNormal(inWorld.xz) : mapNormal(inWorld.xz);
+  vec3 n = kHeightNormals ? terrainNormal(inWorld.xz) : mapNormal(inWorld);
   float diffuse = max(dot(n, normalize(frame.light.xyz)), 0.0);
   float shade = 0.25 + 0.75 * diffuse;
   vec3 base;

@@ -157,11 +157,17 @@ struct OldNew {
   int w, h;
   OldNew(const Heightfield& hf, int width, int height, int grid)
       : oldR(lbtest::gpu(), hf, oldSettings(width, height, grid)),
-        newR(lbtest::gpu(), hf, {width, height, grid}),
+        newR(lbtest::gpu(), hf, levelZeroSettings(width, height, grid)),
         w(width),
         h(height) {
     oldR.setScheme(*findScheme("uniform"), {});
     newR.setScheme(*findScheme("uniform"), {});
+  }
+  // The map's level 0, which stands for the per-pixel normal (its coarser levels filter on purpose).
+  static RenderSettings levelZeroSettings(int width, int height, int grid) {
+    RenderSettings s{width, height, grid};
+    s.testMipZeroShading = true;
+    return s;
   }
   static RenderSettings oldSettings(int width, int height, int grid) {
     RenderSettings s{width, height, grid};

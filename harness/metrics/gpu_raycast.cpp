@@ -9,6 +9,7 @@
 #include "metrics/raycast_shade.h"
 #include "render/gpu_profiler.h"
 #include "render/pipeline.h"
+#include "shaders/footprint.h"
 #include "shaders/raycast_params.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
@@ -32,15 +33,18 @@ struct Params {
   int32_t size[4];
   int32_t grid[4];
   uint32_t levels[LB_RAYCAST_MAX_LEVELS][4];
+  float shading[4];                                 // x: shadingPixelAngle; y: normal map levels
+  uint32_t normalLevels[LB_RAYCAST_MAX_LEVELS][4];  // per normal map level: offset (texels), width, height
 };
-static_assert(sizeof(Params<double>) == 352 + LB_RAYCAST_MAX_LEVELS * 16);
-static_assert(sizeof(Params<float>) == 256 + LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<double>) == 368 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<float>) == 272 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 template <typename T>
 void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double cw, double ch, int width, int height,
-                const int grid[4], int samplesX, int samplesZ, float extent, const std::vector<uint32_t>& levels) {
+                const int grid[4], int samplesX, int samplesZ, float extent, const std::vector<uint32_t>& levels,
+                float pixelAngle, const std::vector<uint32_t>& normalLevels) {
   Params<T> p{};
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) p.invViewProj[c * 4 + r] = T(inv[c][r]);
@@ -67,6 +71,9 @@ void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double 
   p.size[0] = width, p.size[1] = height, p.size[2] = samplesX, p.size[3] = samplesZ;
   std::memcpy(p.grid, grid, sizeof p.grid);
   std::memcpy(p.levels, levels.data(), levels.size() * sizeof(uint32_t));
+  p.shading[0] = pixelAngle;
+  p.shading[1] = float(normalLevels.size() / 4);
+  std::memcpy(p.normalLevels, normalLevels.data(), normalLevels.size() * sizeof(uint32_t));
   std::memcpy(out, &p, sizeof p);
 }
 
@@ -100,8 +107,14 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
   const MemoryTag measure{GpuResource::Measure};
   heights_ = createBufferWithData(ctx, hf.h.data(), heightBytes, kStorage, measure);
   mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage, measure);
-  normals_ = createBufferWithData(ctx, normals.texels.data(), VkDeviceSize(normals.texels.size()) * sizeof(uint16_t),
-                                  kStorage, measure);
+  std::vector<uint16_t> allNormals;  // every level, level 0 first; offsets in uints (two halves each)
+  for (int k = 0; k < normals.levels(); ++k) {
+    normalTable_.insert(normalTable_.end(), {uint32_t(allNormals.size() / 2), uint32_t(normals.levelWidth(k)),
+                                             uint32_t(normals.levelHeight(k)), 0u});
+    allNormals.insert(allNormals.end(), normals.levelTexels(k).begin(), normals.levelTexels(k).end());
+  }
+  normals_ = createBufferWithData(ctx, allNormals.data(), VkDeviceSize(allNormals.size()) * sizeof(uint16_t), kStorage,
+                                  measure);
   params_ = createBuffer(ctx, sizeof(Params<double>), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, measure);
   unusedDistance_ = createBuffer(ctx, sizeof(float), kStorage, false, measure);
 
@@ -128,7 +141,8 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
   const double cw = double(extent_) / double(cellsX_), ch = double(extent_) / double(cellsZ_);
   const int grid[4] = {cellsX_, cellsZ_, levels_, distance ? 1 : 0};
   (double_ ? fillParams<double> : fillParams<float>)(params_.mapped, inv, glm::dvec3(cam.eye), cw, ch, width, height,
-                                                     grid, samplesX_, samplesZ_, extent_, levelTable_);
+                                                     grid, samplesX_, samplesZ_, extent_, levelTable_,
+                                                     shadingPixelAngle(cam.proj, height), normalTable_);
 
   // Set per run: the output buffers are the caller's. The last run has finished (runOneShot waits).
   const VkDescriptorBufferInfo infos[6] = {{heights_.buffer, 0, VK_WHOLE_SIZE},

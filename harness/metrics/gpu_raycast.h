@@ -45,7 +45,8 @@ class GpuRaycast {
   bool double_ = false;
   int samplesX_ = 0, samplesZ_ = 0, cellsX_ = 0, cellsZ_ = 0, levels_ = 0;
   float extent_ = 0;
-  std::vector<uint32_t> levelTable_;  // per level: offset, width, height, 0
+  std::vector<uint32_t> levelTable_;   // per level: offset, width, height, 0
+  std::vector<uint32_t> normalTable_;  // per normal map level: offset (uints), width, height, 0
   Buffer heights_, mip_, normals_, params_, unusedDistance_;
   Bindings bindings_;
   vk::Unique<VkPipeline> pipeline_;

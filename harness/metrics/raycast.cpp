@@ -8,6 +8,7 @@
 
 #include "camera/camera_matrices.h"
 #include "metrics/raycast_shade.h"
+#include "shaders/footprint.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 
@@ -166,6 +167,7 @@ RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width,
   RgbaImage img{width, height, std::vector<uint8_t>(size_t(width) * size_t(height) * 4)};
   if (distance) distance->assign(size_t(width) * size_t(height), -1.0f);
   const glm::dvec3 eye(cam.eye);
+  const float pixelAngle = shadingPixelAngle(cam.proj, height);
   auto rows = [&](int first, int step) {
     for (int y = first; y < height; y += step)
       for (int x = 0; x < width; ++x) {
@@ -173,8 +175,12 @@ RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width,
         pixelRay(inv, x, y, width, height, o, d);
         RayHit h = castRay(hf, mip, o, d, 0.0, 1.0);
         size_t i = size_t(y) * size_t(width) + size_t(x);
-        std::array<uint8_t, 4> c =
-            h.hit ? shadeTerrain(normals, hf.extent, float(h.pos.x), float(h.pos.z)) : kClearRgba;
+        std::array<uint8_t, 4> c = kClearRgba;
+        if (h.hit) {
+          const glm::vec3 p(h.pos);  // terrain.frag's shading input: the point, and the level of its footprint
+          c = shadeTerrain(normals, hf.extent, p.x, p.z,
+                           shadingLevel(p, cam.eye, pixelAngle, hf.extent, hf.width, hf.height));
+        }
         std::copy(c.begin(), c.end(), img.px.begin() + long(i * 4));
         if (distance && h.hit) (*distance)[i] = float(glm::length(h.pos - eye));
       }

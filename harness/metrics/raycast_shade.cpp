@@ -25,8 +25,8 @@ glm::vec3 shadeLight() {
   return glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f));  // Renderer::fillUniforms (harness/render/renderer.cpp)
 }
 
-std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, float x, float z) {
-  glm::vec3 n = sampleNormalMap(normals, extent, x, z);  // terrain.frag mapNormal()
+std::array<uint8_t, 4> shadeTerrain(const NormalMap& normals, float extent, float x, float z, float level) {
+  glm::vec3 n = sampleNormalMap(normals, extent, x, z, level);  // terrain.frag mapNormal()
   static const glm::vec3 light = shadeLight();
   float diffuse = std::max(glm::dot(n, light), 0.0f);
   float shade = 0.25f + 0.75f * diffuse;

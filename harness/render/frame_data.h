@@ -45,6 +45,9 @@ struct RenderSettings {
   // Testing only: shade with the per-pixel normal from four height lookups that came before the
   // normal map (shaders/terrain.frag kHeightNormals); the geometry and counters are the same.
   bool testHeightNormals = false;
+  // Testing only: shade from the normal map's level 0 at every distance (the sampler's largest level
+  // is 0), as before the mip chain; the footprint's level is still computed, and ignored.
+  bool testMipZeroShading = false;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

@@ -13,6 +13,7 @@
 #include "render/compute_pass.h"
 #include "render/image_io.h"
 #include "render/lod_state.h"
+#include "shaders/footprint.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -43,6 +44,8 @@ FrameUniforms Renderer::fillUniforms(int slotIndex, const CameraPose& view, cons
   u.terrain = glm::vec4(terrain_.extent, float(settings_.grid), float(terrain_.width), float(terrain_.height));
   u.light = glm::vec4(glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f)), 0.0f);
   u.origin = glm::vec4(float(terrain_.originX), float(terrain_.originZ), 0.0f, 0.0f);
+  // The view camera and this target's pixel angle: the footprint's normal map level (shaders/footprint.h).
+  u.shading = glm::vec4(v.eye, shadingPixelAngle(v.proj, settings_.height));
   scheme_->update(u, params_);
   std::memcpy(static_cast<char*>(uniforms_.mapped) + uniformStride_ * VkDeviceSize(slotIndex), &u, sizeof u);
   return u;

@@ -78,9 +78,14 @@ void Renderer::createTargets() {
   setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
   normalMap_ = createImage(ctx_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                           tag(GpuResource::NormalMap));
-  uploadImage(ctx_, normalMap_, normals.texels.data(), normals.texels.size() * sizeof(uint16_t));
-  linearSampler_ = createSampler(ctx_, VK_FILTER_LINEAR);
+                           tag(GpuResource::NormalMap), uint32_t(normals.levels()));
+  std::vector<ImageLevelData> levels;
+  for (int k = 0; k < normals.levels(); ++k)
+    levels.push_back({normals.levelTexels(k).data(), normals.levelTexels(k).size() * sizeof(uint16_t)});
+  uploadImageLevels(ctx_, normalMap_, levels);
+  // Trilinear over every level: terrain.frag chooses the level (textureLod), never the derivatives.
+  linearSampler_ =
+      createSampler(ctx_, VK_FILTER_LINEAR, settings_.testMipZeroShading ? 0.0f : float(normals.levels() - 1));
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
   uniforms_ =

@@ -34,9 +34,9 @@ static std::string cacheKey(const Heightfield& terrain, int width, int height, c
   uint64_t th = hashBytes(terrain.h.data(), terrain.h.size() * sizeof(float), 0xcbf29ce484222325ull);
   std::ostringstream key;
   key.precision(9);
-  // Bump the version ("raycast2": normal-map shading) when the ray cast or terrain.frag's
-  // shading changes, so old files are not reused.
-  key << "raycast2|" << std::hex << th << std::dec << '|' << terrain.width << 'x' << terrain.height << '|'
+  // Bump the version ("raycast2": normal-map shading; "raycast3": filtered at the footprint's mip
+  // level) when the ray cast or terrain.frag's shading changes, so old files are not reused.
+  key << "raycast3|" << std::hex << th << std::dec << '|' << terrain.width << 'x' << terrain.height << '|'
       << terrain.extent << '|' << terrain.originX << ',' << terrain.originZ << '|' << width << 'x' << height << '|'
       << pose.eye.x << ',' << pose.eye.y << ',' << pose.eye.z << '|' << pose.target.x << ',' << pose.target.y << ','
       << pose.target.z << '|' << pose.fovDeg;

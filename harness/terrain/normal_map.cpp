@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "shaders/footprint.h"
 #include "terrain/heightfield.h"
 #include "terrain/parallel_rows.h"
 
@@ -40,6 +41,8 @@ float halfToFloat(uint16_t h) {
   return sign * std::ldexp(float(mant | 0x400), exp - 25);  // exp 31 (inf) never stored
 }
 
+static void addCoarserLevels(NormalMap& nm);
+
 NormalMap computeNormalMap(const Heightfield& hf) {
   NormalMap nm;
   nm.width = hf.width;
@@ -66,20 +69,81 @@ NormalMap computeNormalMap(const Heightfield& hf) {
       }
     }
   });
+  addCoarserLevels(nm);
   return nm;
 }
 
-glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z) {
-  const glm::ivec2 size(nm.width, nm.height);
-  glm::vec2 t = glm::clamp(glm::vec2(x, z) / extent, 0.0f, 1.0f) * glm::vec2(size - 1);
-  glm::ivec2 i0 = glm::min(glm::ivec2(glm::floor(t)), glm::max(size - 2, glm::ivec2(0)));
-  glm::vec2 f = t - glm::vec2(i0);
-  glm::ivec2 i1 = glm::min(i0 + 1, size - 1);
-  auto g = [&](int ix, int iz) {
-    size_t i = (size_t(iz) * size_t(nm.width) + size_t(ix)) * 2;
-    return glm::vec2(halfToFloat(nm.texels[i]), halfToFloat(nm.texels[i + 1]));
+// Level k from level k - 1: the mean of the texels each covers (the last one of an odd row or
+// column joins the texel before it), in float, rounded to half.
+static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine) {
+  NormalMapLevel out;
+  out.width = std::max(1, w / 2);
+  out.height = std::max(1, h / 2);
+  out.texels.resize(size_t(out.width) * size_t(out.height) * 2);
+  auto span = [](int i, int n, int fineN) {  // the fine texels [first, last] of coarse texel i
+    const int first = 2 * i;
+    const int last = i == n - 1 ? fineN - 1 : std::min(2 * i + 1, fineN - 1);
+    return std::pair<int, int>(first, last);
   };
-  glm::vec2 s = glm::mix(glm::mix(g(i0.x, i0.y), g(i1.x, i0.y), f.x), glm::mix(g(i0.x, i1.y), g(i1.x, i1.y), f.x), f.y);
+  parallelRows(out.height, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z) {
+      const auto [za, zb] = span(z, out.height, h);
+      for (int x = 0; x < out.width; ++x) {
+        const auto [xa, xb] = span(x, out.width, w);
+        float gx = 0, gz = 0;
+        for (int j = za; j <= zb; ++j)
+          for (int i = xa; i <= xb; ++i) {
+            const size_t k = (size_t(j) * size_t(w) + size_t(i)) * 2;
+            gx += halfToFloat(fine[k]);
+            gz += halfToFloat(fine[k + 1]);
+          }
+        const float n = float((zb - za + 1) * (xb - xa + 1));
+        const size_t o = (size_t(z) * size_t(out.width) + size_t(x)) * 2;
+        out.texels[o] = floatToHalf(gx / n);
+        out.texels[o + 1] = floatToHalf(gz / n);
+      }
+    }
+  });
+  return out;
+}
+
+static void addCoarserLevels(NormalMap& nm) {
+  const int levels = normalMapLevels(nm.width, nm.height);
+  for (int k = 1; k < levels; ++k)
+    nm.coarser.push_back(halve(nm.levelWidth(k - 1), nm.levelHeight(k - 1), nm.levelTexels(k - 1)));
+}
+
+// One level's bilinear fetch at texel coordinate u (texel i's centre at i), clamped to the edge.
+static glm::vec2 bilinear(const NormalMap& nm, int k, glm::vec2 u) {
+  const int w = nm.levelWidth(k), h = nm.levelHeight(k);
+  const std::vector<uint16_t>& texels = nm.levelTexels(k);
+  const glm::vec2 fl = glm::floor(u);
+  const glm::vec2 f = u - fl;
+  const glm::ivec2 i0(fl);
+  const glm::ivec2 a = glm::clamp(i0, glm::ivec2(0), glm::ivec2(w - 1, h - 1));
+  const glm::ivec2 b = glm::clamp(i0 + 1, glm::ivec2(0), glm::ivec2(w - 1, h - 1));
+  auto g = [&](int ix, int iz) {
+    size_t i = (size_t(iz) * size_t(w) + size_t(ix)) * 2;
+    return glm::vec2(halfToFloat(texels[i]), halfToFloat(texels[i + 1]));
+  };
+  return glm::mix(glm::mix(g(a.x, a.y), g(b.x, a.y), f.x), glm::mix(g(a.x, b.y), g(b.x, b.y), f.x), f.y);
+}
+
+glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z, float level) {
+  const glm::ivec2 size(nm.width, nm.height);
+  const glm::vec2 t = glm::clamp(glm::vec2(x, z) / extent, 0.0f, 1.0f) * glm::vec2(size - 1);
+  // Level k's texel coordinate: (t + 0.5) / size0 * size_k - 0.5 (level 0: t itself).
+  auto at = [&](int k) {
+    if (k == 0) return t;
+    const glm::vec2 sk(float(nm.levelWidth(k)), float(nm.levelHeight(k)));
+    return (t + 0.5f) * sk / glm::vec2(size) - 0.5f;
+  };
+  const int last = nm.levels() - 1;
+  const float clamped = std::clamp(level, 0.0f, float(last));
+  const int k0 = int(std::floor(clamped));
+  const float f = clamped - float(k0);
+  glm::vec2 s = bilinear(nm, k0, at(k0));
+  if (f > 0.0f) s = glm::mix(s, bilinear(nm, k0 + 1, at(k0 + 1)), f);
   return glm::normalize(glm::vec3(s.x, 1.0f, s.y));
 }
 

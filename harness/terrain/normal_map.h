@@ -24,9 +24,23 @@ namespace lb {
 
 struct Heightfield;
 
+// Mip levels 1, 2, ... (shaders/footprint.h chooses which one shades a pixel): level k has
+// max(1, size >> k) texels a side (Vulkan's chain), each the mean of the gradients of the 2 x 2
+// texels of level k - 1 it covers, and of the last row or column too where that level's size is odd
+// (nothing is dropped): the mean gradient over the area, which is the gradient of the mean surface.
+struct NormalMapLevel {
+  int width = 0, height = 0;
+  std::vector<uint16_t> texels;
+};
+
 struct NormalMap {
-  int width = 0, height = 0;     // the heightfield's sample counts
-  std::vector<uint16_t> texels;  // RG16F bit patterns (gx, gz), row-major, row = z
+  int width = 0, height = 0;            // the heightfield's sample counts
+  std::vector<uint16_t> texels;         // RG16F bit patterns (gx, gz), row-major, row = z: level 0
+  std::vector<NormalMapLevel> coarser;  // levels 1 .. normalMapLevels(width, height) - 1
+  int levels() const { return 1 + int(coarser.size()); }
+  int levelWidth(int k) const { return k == 0 ? width : coarser[size_t(k - 1)].width; }
+  int levelHeight(int k) const { return k == 0 ? height : coarser[size_t(k - 1)].height; }
+  const std::vector<uint16_t>& levelTexels(int k) const { return k == 0 ? texels : coarser[size_t(k - 1)].texels; }
 };
 
 NormalMap computeNormalMap(const Heightfield& hf);
@@ -35,7 +49,11 @@ NormalMap computeNormalMap(const Heightfield& hf);
 // at texel coordinate t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then
 // normalize(gx, 1, gz), in float as shaders/terrain.frag does it. The GPU's filter weights carry
 // a limited sub-texel precision (8 bits on lavapipe and NVIDIA), so the two agree up to rounding.
-glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z);
+//
+// level > 0 (shadingLevel, shaders/footprint.h): trilinear, as a linear-mipmap sampler reads
+// textureLod(normalMap, (t + 0.5) / size, level): levels floor(level) and the next mixed by the
+// fraction; at level k > 0 the texel coordinate is (t + 0.5) size_k / size - 0.5, clamped to the edge.
+glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z, float level = 0.0f);
 
 uint16_t floatToHalf(float f);  // round to nearest even, clamped to the finite range
 float halfToFloat(uint16_t h);

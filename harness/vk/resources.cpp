@@ -99,25 +99,41 @@ Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImage
 }
 
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes) {
-  Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging});
-  std::memcpy(staging.mapped, data, size_t(bytes));
+  uploadImageLevels(ctx, img, {{data, bytes}});
+}
+
+void uploadImageLevels(Context& ctx, const Image& img, const std::vector<ImageLevelData>& levels) {
+  VkDeviceSize total = 0;
+  for (const ImageLevelData& l : levels) total += (l.bytes + 15) & ~VkDeviceSize(15);  // copy offsets 16-aligned
+  Buffer staging = createBuffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging});
+  std::vector<VkBufferImageCopy> regions;
+  VkDeviceSize offset = 0;
+  for (size_t k = 0; k < levels.size(); ++k) {
+    std::memcpy(static_cast<char*>(staging.mapped) + offset, levels[k].data, size_t(levels[k].bytes));
+    VkBufferImageCopy region{};
+    region.bufferOffset = offset;
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, uint32_t(k), 0, 1};
+    region.imageExtent = {std::max(1u, img.width >> k), std::max(1u, img.height >> k), 1};
+    regions.push_back(region);
+    offset += (levels[k].bytes + 15) & ~VkDeviceSize(15);
+  }
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {img.width, img.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           uint32_t(regions.size()), regions.data());
     imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_READ_BIT);
   });
 }
 
-vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter) {
+vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter, float maxLod) {
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   si.magFilter = si.minFilter = filter;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  si.maxLod = maxLod;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VkSampler sampler;
   VK_CHECK(vkCreateSampler(ctx.device, &si, nullptr, &sampler));
@@ -225,7 +241,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  b.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, 1};  // every level of an image with mips
   VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   di.imageMemoryBarrierCount = 1;
   di.pImageMemoryBarriers = &b;

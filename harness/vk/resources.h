@@ -46,9 +46,16 @@ Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImage
                   VkImageAspectFlags aspect, MemoryTag tag = {}, uint32_t mipLevels = 1);
 // Uploads tightly packed texels of level 0 and leaves the image in SHADER_READ_ONLY_OPTIMAL.
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes);
+// Every level's tightly packed texels, level 0 first (level k: max(1, size >> k) a side).
+struct ImageLevelData {
+  const void* data;
+  VkDeviceSize bytes;
+};
+void uploadImageLevels(Context& ctx, const Image& img, const std::vector<ImageLevelData>& levels);
 
-// Nearest-filtered (or linear) sampler clamped to the edge.
-vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter);
+// Nearest-filtered (or linear) sampler clamped to the edge; maxLod > 0: mip levels up to maxLod,
+// mixed linearly (trilinear with VK_FILTER_LINEAR).
+vk::Unique<VkSampler> createSampler(Context& ctx, VkFilter filter, float maxLod = 0.0f);
 // A pool of resettable command buffers on the context's queue family, and `count` of them
 // (released with the pool).
 vk::Unique<VkCommandPool> createCommandPool(Context& ctx, VkCommandBuffer* buffers, uint32_t count);
