@@ -212,30 +212,33 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   if (spec.on("popping")) {
     // A case's first frame has no previous frame: popping is undefined there (null), not 0, so
     // summaries average only frames that could pop.
-    PopResult pop{kNan, kNan, 0};
-    if (frame > 0 && popBefore) {  // a stateful LOD: its previous state from this view, against this one
-      ImageError e = g ? g->reduce.compare(g->reduce.upload(*popBefore), g->shaded, 16, false).e
-                       : compareImages(*popBefore, m.shaded);
-      pop = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
-    } else if (frame > 0) {
-      pop = measurePopping(r, previous, current, g);
-    }
-    set("pop_mean", pop.mean);
-    set("pop_p99", pop.p99);
-    set("pop_changed", frame > 0 ? double(pop.changed) : kNan);
-    // Lags 2 and 3: null where the path has no frame t - k, as lag 1 on frame 0.
-    for (int k = 2; older && k <= kPopLags; ++k) {
+    // Lag k = 1 .. kPopLags: a stateful LOD's state of frame t - k drawn from this view against this
+    // frame, or the LOD camera of frame t - k, all of those drawn beside one live frame.
+    std::vector<const RgbaImage*> images(kPopLags, nullptr);
+    std::vector<CameraPose> poses;
+    std::vector<int> poseLag;
+    for (int k = 1; k <= kPopLags && frame >= k; ++k) {
       const size_t i = size_t(k - 2);
-      const bool have = frame >= k && (i < older->images.size() || i < older->poses.size());
+      if (k == 1 && popBefore)
+        images[0] = popBefore;
+      else if (k > 1 && older && i < older->images.size())
+        images[size_t(k - 1)] = &older->images[i];
+      else if (k == 1 || (older && i < older->poses.size()))
+        poses.push_back(k == 1 ? previous : older->poses[i]), poseLag.push_back(k);
+    }
+    std::vector<PopResult> fromPoses = poses.empty() ? std::vector<PopResult>{} : measurePopping(r, poses, current, g);
+    for (int k = 1; k <= kPopLags; ++k) {
+      if (k > 1 && !older) break;  // lags beyond 1 only where the caller gave the older LOD
       PopResult p{kNan, kNan, 0};
-      if (have && i < older->images.size()) {
-        ImageError e = g ? g->reduce.compare(g->reduce.upload(older->images[i]), g->shaded, 16, false).e
-                         : compareImages(older->images[i], m.shaded);
-        p = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels};
-      } else if (have) {
-        p = measurePopping(r, older->poses[i], current, g);
+      bool have = false;
+      if (const RgbaImage* img = images[size_t(k - 1)]) {
+        ImageError e =
+            g ? g->reduce.compare(g->reduce.upload(*img), g->shaded, 16, false).e : compareImages(*img, m.shaded);
+        p = {e.meanAbsDiff, e.p99AbsDiff, e.changedPixels}, have = true;
       }
-      const std::string key = "pop" + std::to_string(k);
+      for (size_t j = 0; j < poseLag.size(); ++j)
+        if (poseLag[j] == k) p = fromPoses[j], have = true;
+      const std::string key = k == 1 ? "pop" : "pop" + std::to_string(k);
       set(key + "_mean", p.mean);
       set(key + "_p99", p.p99);
       set(key + "_changed", have ? double(p.changed) : kNan);

@@ -37,5 +37,8 @@ struct OlderLod {
 
 PopResult measurePopping(Renderer& renderer, const CameraPose& previous, const CameraPose& current,
                          MeasureGpu* gpu = nullptr);
+// The same for several LOD cameras at once (lags 1, 2, 3): the live frame drawn once.
+std::vector<PopResult> measurePopping(Renderer& renderer, const std::vector<CameraPose>& previous,
+                                      const CameraPose& current, MeasureGpu* gpu = nullptr);
 
 }  // namespace lb
