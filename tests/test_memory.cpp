@@ -145,7 +145,7 @@ TEST(HostMemory, PeakSeesMemoryTouchedSinceTheReset) {
   const HostPeak b = hostPeak(reset);
   ASSERT_GE(b.bytes, 0) << b.reason;
   EXPECT_GE(b.bytes, int64_t(64u << 20));
-  EXPECT_GE(b.bytes, a.bytes + int64_t(60u << 20));
+  if (reset) EXPECT_GE(b.bytes, a.bytes + int64_t(60u << 20));  // else the peak may predate the block
 }
 
 // A run's case records: memory in every finished case's summary, the device figure the renderer's,
@@ -181,7 +181,8 @@ TEST(MemoryRecord, CasesRecordMemoryOrWhyNot) {
     EXPECT_EQ(m["gpu_bytes"]["other"].get<uint64_t>(), 0u);
     EXPECT_GT(m["gpu_total_bytes"].get<uint64_t>(), m["gpu_lod_bytes"].get<uint64_t>());
     ASSERT_TRUE(m["host_peak_bytes"].is_number()) << m["host_reason"];
-    EXPECT_EQ(m["host_peak_scope"], "case");
+    // "process" only where the kernel refuses the reset (then this process cannot reset it either).
+    EXPECT_EQ(m["host_peak_scope"], resetHostPeak() ? "case" : "process");
     EXPECT_GE(m["host_peak_bytes"].get<int64_t>(), int64_t(257 * 257 * 4));
     EXPECT_LT(m["host_peak_bytes"].get<double>(), double(pages) * double(pageSize));
     if (cj["scheme"] == "cbt") EXPECT_GT(m["gpu_bytes"]["lod_state"].get<uint64_t>(), 0u);
