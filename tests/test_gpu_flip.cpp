@@ -1,8 +1,7 @@
 // FLIP's compute passes (metrics/gpu_flip.h) against the CPU oracle (metrics/flip.h), pixel by pixel,
 // on frames of every shipped path over the procedural terrain (first, middle and last) and the
-// committed DEM crop (middle): the live
-// frame of sphere against the ray-cast truth, both in device buffers as the GPU measurement path
-// holds them.
+// committed DEM crop (middle): the live frame of sphere against the ray-cast truth, both in device
+// buffers as the GPU measurement path holds them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
