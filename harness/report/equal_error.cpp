@@ -145,9 +145,6 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                       "matched parameter",
                       "search reached",
                       "error p95 px, run median",
-                      "FLIP mean",
-                      "popping lag 1 / 2 / 3",
-                      "lag frames",
                       "GPU ms median",
                       "GPU ms p95",
                       "energy J/frame",
@@ -158,7 +155,10 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
                       "draw GPU ms",
                       "LOD CPU ms",
                       "triangles median",
-                      "non-degenerate share"};
+                      "non-degenerate share",
+                      "FLIP mean",
+                      "popping lag 1 / 2 / 3",
+                      "lag frames"};
   out.table.numeric = {false, false, false, false, true, true, true, true, true, true,
                        true,  true,  true,  true,  true, true, true, true, true};
   std::vector<EnergyFigure> energies;
@@ -184,8 +184,6 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
     out.table.rows.push_back(
         {textCell(c.scheme), textCell(pathName(c.scheme)), textCell(param), textCell(reached),
          textCell(formatValue(summaryStat(c.summary, "err_p95_px", "median"))),
-         textCell(formatValue(summaryStat(c.summary, "flip_mean", "mean"))), textCell(poppingLags(c)),
-         textCell(formatValue(summaryStat(c.summary, "settle", "frames"))),
          textCell(formatValue(std::isfinite(r.gpuMedian) ? std::optional<double>(r.gpuMedian) : std::nullopt)),
          textCell(formatValue(gpu95)),
          textCell(formatValue(energy ? std::optional<double>(energy->mean) : std::nullopt)),
@@ -194,7 +192,9 @@ EqualErrorSection equalErrorSection(const ReportRun& run) {
          textCell(formatValue(lod)), textCell(formatValue(draw)),
          textCell(formatValue(summaryStat(c.summary, "lod_cpu_ms", "median"))),
          textCell(formatValue(summaryStat(c.summary, "triangles", "median"))),
-         textCell(percentText(nonDegenerateShare(c)))});
+         textCell(percentText(nonDegenerateShare(c))),
+         textCell(formatValue(summaryStat(c.summary, "flip_mean", "mean"))), textCell(poppingLags(c)),
+         textCell(formatValue(summaryStat(c.summary, "settle", "frames")))});
     if (!std::isfinite(r.gpuMedian)) continue;
     const std::string label = c.scheme + (reachable ? "" : " (unreachable)");
     if (lod && draw) {
