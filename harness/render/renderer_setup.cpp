@@ -132,10 +132,12 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     return UniformSlot{nextSlot_, uint32_t(uniformStride_ * VkDeviceSize(nextSlot_))};
   };
   meshStages_ = false;
+  // Timed with the preprocessing: a path's per-terrain LOD state (an instanced scheme's trees and
+  // tables, chunked's offline meshes) is built with the draw path object.
+  const auto tPreprocess = std::chrono::steady_clock::now();
   path_ = makePathDrawer(env);
   meshStages_ = !path_->stages().mesh.empty();
   schemeTex_ = {};
-  const auto tPreprocess = std::chrono::steady_clock::now();
   // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
   const VkImageUsageFlags texUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (!scheme.info().compute.empty()) {
