@@ -8,11 +8,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "config/config.h"
 #include "error.h"
+#include "render/instanced.h"
+#include "render/scheme.h"
 #include "results/write.h"
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
@@ -120,16 +123,34 @@ json specJson(const TerrainSpec& t) {
 
 // A scheme's load-time work: its CPU preprocessing, or for a compute scheme the CPU reference of
 // its pass. Returns false when the scheme has none.
+// An instanced scheme's per-terrain LOD state (trees, tables, chunked's offline meshes) is built
+// with its draw path: timed here as setScheme times it, fingerprinted by its footprints.
 struct SchemeOutput {
   SchemeTexture tex;
+  std::unique_ptr<InstancedLod> lod;
 };
 bool schemeStage(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int grid, SchemeOutput& out) {
   out.tex =
       scheme.info().compute.empty() ? scheme.preprocessGrid(hf, params, grid) : scheme.computeReference(hf, params);
-  return !out.tex.rgba.empty();
+  if (scheme.info().path == DrawPath::InstancedGrid) out.lod = scheme.instancedLod(hf, params);
+  return !out.tex.rgba.empty() || out.lod;
 }
 
 std::string fingerprint(const SchemeOutput& o) {
+  if (o.lod) {
+    uint64_t h = 1469598103934665603ull;
+    for (const Footprint& f : o.lod->footprints()) {
+      for (const glm::vec2& v : f.vertices) {
+        uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+      }
+      for (uint32_t i : f.indices) h = (h ^ i) * 1099511628211ull;
+    }
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    return text;
+  }
   if (o.tex.channels == 4) return fingerprint(o.tex.rgba.data(), o.tex.rgba.size() * sizeof(float));
   // A one-channel texture hashes as the RGBA texture (r, 0, 0, 0) it replaced, so hashes of builds
   // before and after the change compare.

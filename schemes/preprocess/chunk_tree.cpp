@@ -1,6 +1,7 @@
 #include "schemes/preprocess/chunk_tree.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <list>
@@ -218,11 +219,18 @@ ChunkTree buildChunkTree(const Heightfield& hf, int leafCells, double leafErrorC
         tree.chunks.push_back(std::move(c));
       }
   }
+  // Chunks from the root down (a coarse chunk costs most), each thread taking the next one: bands
+  // of the list would leave one thread all the coarse levels. Chunks are independent, so the tree
+  // does not depend on who built what.
   std::vector<double> depth(tree.chunks.size(), 0.0);
+  std::atomic<size_t> next{0};
   parallelRows(
-      int(tree.chunks.size()),
-      [&](int a, int b) {
-        for (int k = a; k < b; ++k) depth[size_t(k)] = ChunkBuilder(hf, leafCells, tree.chunks[size_t(k)]).build();
+      terrainThreads(),
+      [&](int, int) {
+        for (size_t k; (k = next.fetch_add(1)) < tree.chunks.size();) {
+          const size_t c = tree.chunks.size() - 1 - k;
+          depth[c] = ChunkBuilder(hf, leafCells, tree.chunks[c]).build();
+        }
       },
       1);
   for (Chunk& c : tree.chunks) {  // children precede parents
