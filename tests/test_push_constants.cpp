@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/probe.h"
+#include "shaders/flip_params.h"
 #include "shaders/reduce_params.h"
 #include "shaders/shared.h"
 #include "vk/resources.h"
@@ -95,10 +96,9 @@ Module parse(const std::string& path) {
 
 TEST(PushConstants, EveryShaderBlockHasTheSizeOfItsCppMirror) {
   const std::map<std::string, uint32_t> mirrors = {
-      {"DrawPush", uint32_t(sizeof(lb::DrawPush))},
-      {"ComputePush", uint32_t(sizeof(lb::ComputePush))},
-      {"Probe", uint32_t(sizeof(lb::ProbePush))},
-      {"ReducePush", uint32_t(sizeof(lb::ReducePush))},
+      {"DrawPush", uint32_t(sizeof(lb::DrawPush))}, {"ComputePush", uint32_t(sizeof(lb::ComputePush))},
+      {"Probe", uint32_t(sizeof(lb::ProbePush))},   {"ReducePush", uint32_t(sizeof(lb::ReducePush))},
+      {"FlipPush", uint32_t(sizeof(lb::FlipPush))},
   };
   std::set<std::string> seen;
   for (const auto& entry : std::filesystem::directory_iterator(lb::shaderDir())) {
