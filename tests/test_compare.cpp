@@ -423,7 +423,7 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }
 
-// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap) and GPU-indirect ones (cbt, cbt-ts)
+// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap, chunked) and GPU-indirect ones (cbt, cbt-ts)
 // beside tessellated ones: compare shows their LOD/draw split (medians of both sides, not judged)
 // and gives tessellated cases none.
 TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
@@ -436,7 +436,8 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
       EXPECT_TRUE(c.split.empty()) << c.id;
       continue;
     }
-    const bool isInstanced = c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0;
+    const bool isInstanced =
+        c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0 || c.id.rfind("chunked", 0) == 0;
     if (c.id.rfind("cbt", 0) == 0) {  // GPU-indirect: the compute passes and the draw, no CPU selection
       ++indirect;
       ASSERT_EQ(c.split.size(), 2u) << c.id;
@@ -455,7 +456,7 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
     EXPECT_EQ(c.split[2].key, "lod_cpu_ms");
     EXPECT_GT(c.split[2].baseline, 0.0) << c.id;
   }
-  EXPECT_EQ(instanced, 3);
+  EXPECT_EQ(instanced, 4);  // cdlod, cdlod-sse, clipmap, chunked
   EXPECT_EQ(indirect, 2);
   EXPECT_NE(verdictMarkdown(r).find("## LOD and draw"), std::string::npos);
   EXPECT_TRUE(verdictJson(r)["cases"][0].is_object());
