@@ -8,14 +8,20 @@
 # runs only their timing and measurement again. Call again with the same ROOT to go on (each
 # shard's log grows by the calls); "merge" joins the finished shards, writes verdict.json and the
 # report.
-# Usage: scripts/device-suite.sh BUILD_DIR ROOT [CONFIG] [--gpus N] [--deadline S] [--first REGEX]
+# Usage: scripts/device-suite.sh BUILD_DIR ROOT [CONFIG] [--and ROOT2 [CONFIG2]]... [--gpus N|LIST]
+#                               [--deadline S] [--first REGEX] [--keep-claims]
 #        scripts/device-suite.sh BUILD_DIR ROOT merge
 #   CONFIG      default configs/suite/gpu-h100.json; written once to ROOT/config.json by
 #               scripts/run-suite.sh --dry-run (the SRTM tile in place of the crop where found,
 #               the largest terrain sized to the device; needs python3) unless ROOT/config.json exists
-#   --gpus      workers (default: nvidia-smi's count); worker g runs on Vulkan device g
+#   --and       one more run in the same queue: its shards are taken after ROOT's, by the same
+#               workers, so one call keeps every GPU busy across several configs
+#   --gpus      workers: a count N (Vulkan devices 0..N-1, default nvidia-smi's count) or a list of
+#               device indices with commas, such as 1,2,3 or 3, (another command has the others)
 #   --deadline  seconds from now after which no shard starts and a running one is stopped (default 540)
-#   --first     workloads whose terrain label matches REGEX are taken first
+#   --first     workloads whose terrain label matches REGEX are taken first (within each run)
+#   --keep-claims  leave the shard claims in place (another invocation on other GPUs shares these
+#               runs now); by default an earlier call's claims of unfinished shards are cleared
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$1 root=$2
@@ -30,46 +36,60 @@ if [[ ${1:-} == merge ]]; then
   exit 0
 fi
 [[ $# -gt 0 && $1 != -* ]] && { config=$1; shift; }
+roots=("$root") configs=("$config") keepClaims=0
 while [[ $# -gt 0 ]]; do
   case $1 in
+    --and)
+      roots+=("$2"); shift 2
+      if [[ $# -gt 0 && $1 != -* ]]; then configs+=("$1"); shift; else configs+=(configs/suite/gpu-h100.json); fi ;;
     --gpus) gpus=$2; shift 2 ;;
     --deadline) deadline=$2; shift 2 ;;
     --first) first=$2; shift 2 ;;
+    --keep-claims) keepClaims=1; shift ;;
     *) echo "device-suite: unknown argument $1" >&2; exit 2 ;;
   esac
 done
 export LODBENCH_SHADER_DIR=$build/shaders LODBENCH=$build/lodbench
 end=$(( $(date +%s) + deadline ))
 [[ -n $gpus ]] || gpus=$(nvidia-smi -L | wc -l)
-mkdir -p "$root"
-[[ -f $root/config.json ]] || scripts/run-suite.sh --config "$config" --out "$root" --dry-run >"$root/dry-run.txt"
-nvidia-smi --query-gpu=index,name,uuid,driver_version,power.limit,clocks.sm,clocks.max.sm --format=csv >>"$root/gpus.txt" || true
-# Workload k of W in the config's order: the case ids' part after the scheme (terrain, path,
-# resolution, match), once each.
-mapfile -t workloads < <("$LODBENCH" run "$root/config.json" --dry-run 2>/dev/null | grep -v '^lodbench' |
-  sed 's/^[^_]*_//' | awk '!seen[$0]++')
-W=${#workloads[@]}
-order=()
-for k in "${!workloads[@]}"; do [[ -n $first && ${workloads[$k]} =~ $first ]] && order+=("$k"); done
-for k in "${!workloads[@]}"; do [[ -n $first && ${workloads[$k]} =~ $first ]] || order+=("$k"); done
-rm -rf "$root"/claim-*  # claims of an earlier call's unfinished shards
+if [[ $gpus == *,* || ! $gpus =~ ^[0-9]+$ ]]; then IFS=, read -ra devices <<<"$gpus"
+else devices=(); for (( g = 0; g < gpus; ++g )); do devices+=("$g"); done; fi
+# The queue: every run's workloads in its config's order (--first's first), as "run-index shard".
+# Workload k of W: the case ids' part after the scheme (terrain, path, resolution, match), once each.
+jobs=() counts=()
+for r in "${!roots[@]}"; do
+  rt=${roots[$r]}
+  mkdir -p "$rt"
+  [[ -f $rt/config.json ]] || scripts/run-suite.sh --config "${configs[$r]}" --out "$rt" --dry-run >"$rt/dry-run.txt"
+  nvidia-smi --query-gpu=index,name,uuid,driver_version,power.limit,clocks.sm,clocks.max.sm --format=csv >>"$rt/gpus.txt" || true
+  mapfile -t workloads < <("$LODBENCH" run "$rt/config.json" --dry-run 2>/dev/null | grep -v '^lodbench' |
+    sed 's/^[^_]*_//' | awk '!seen[$0]++')
+  counts+=("${#workloads[@]}")
+  for k in "${!workloads[@]}"; do [[ -n $first && ${workloads[$k]} =~ $first ]] && jobs+=("$r $k"); done
+  for k in "${!workloads[@]}"; do [[ -n $first && ${workloads[$k]} =~ $first ]] || jobs+=("$r $k"); done
+  (( keepClaims )) || rm -rf "$rt"/claim-*  # claims of an earlier call's unfinished shards
+done
 worker() {
-  local g=$1 k left start rc
-  for k in "${order[@]}"; do
-    [[ -f $root/shard-$k.done ]] && continue
-    mkdir "$root/claim-$k" 2>/dev/null || continue
+  local g=$1 job r k rt W left start rc
+  for job in "${jobs[@]}"; do
+    read -r r k <<<"$job"
+    rt=${roots[$r]} W=${counts[$r]}
+    [[ -f $rt/shard-$k.done ]] && continue
+    mkdir "$rt/claim-$k" 2>/dev/null || continue
     left=$(( end - $(date +%s) ))
     (( left > 20 )) || return 0
     start=$(date +%s)
     rc=0
-    timeout -s INT -k 30 "$left" "$LODBENCH" run "$root/config.json" --out "$root/shard-$k" --shard "$k/$W" \
-      --device "$g" >>"$root/shard-$k.log" 2>&1 || rc=$?
+    timeout -s INT -k 30 "$left" "$LODBENCH" run "$rt/config.json" --out "$rt/shard-$k" --shard "$k/$W" \
+      --device "$g" >>"$rt/shard-$k.log" 2>&1 || rc=$?
     # 0: every case ok; 1: ended with failed cases (kept, the verdict names them); 130: stopped.
-    if (( rc == 0 || rc == 1 )) && grep -q '^lodbench: [0-9]* ok (' "$root/shard-$k.log"; then touch "$root/shard-$k.done"; fi
-    echo "gpu $g: shard $k/$W (${workloads[$k]}): rc $rc, $(( $(date +%s) - start )) s$([[ -f $root/shard-$k.done ]] && echo , done)"
+    if (( rc == 0 || rc == 1 )) && grep -q '^lodbench: [0-9]* ok (' "$rt/shard-$k.log"; then touch "$rt/shard-$k.done"; fi
+    echo "gpu $g: $rt shard $k/$W: rc $rc, $(( $(date +%s) - start )) s$([[ -f $rt/shard-$k.done ]] && echo , done)"
   done
 }
-for (( g = 0; g < gpus; ++g )); do worker "$g" & done
+for g in "${devices[@]}"; do worker "$g" & done
 wait
-n=$(ls "$root"/shard-*.done 2>/dev/null | wc -l)
-echo "device-suite: $n of $W shards done"
+for r in "${!roots[@]}"; do
+  n=$(ls "${roots[$r]}"/shard-*.done 2>/dev/null | wc -l)
+  echo "device-suite: ${roots[$r]}: $n of ${counts[$r]} shards done"
+done
