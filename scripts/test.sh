@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The test command: install what is missing, build, and run every test once under the Vulkan
 # validation layer (ctest sets LODBENCH_VALIDATION=1): the tests labelled heavy (CMakeLists.txt
-# says which and what covers their code under ASan instead) and those of the Release build alone
-# (label release: the microbenchmarks) in a Release build, every other test in an ASan + UBSan
-# build. Each test runs in one build, not both: the sanitized build is the stricter for the code a
-# test reaches, and the heavy ones need Release speed.
+# says which and what covers their code under ASan instead) and those needing the Release build
+# (label release: the microbenchmarks, the installed package) in a Release build, every other
+# test in an ASan + UBSan build. Each test runs in one build, not both: the sanitized build is the
+# stricter for the code a test reaches, and the heavy ones need Release speed.
 # Set LODBENCH_SKIP_SANITIZE=1 to skip the sanitizer pass (then the Release build runs every test),
 # LODBENCH_SANITIZE_ALL=1 to run the heavy tests under it too (~+20 min on 2 cores).
 set -euo pipefail
