@@ -1,8 +1,8 @@
 # lodbench_add_scheme(<target> SOURCES <c++ files...> [SHADERS <shader files...>])
 #
 # A scheme plugin (docs/plugins.md): a MODULE library of SOURCES that lodbench loads with --plugin
-# or a config's "plugins". Each shader (.vert, .tesc, .comp; a .tese once per partitioning mode, as
-# lodbench's own) is compiled at build time with glslangValidator, its own folder and lodbench's
+# or a config's "plugins". Each shader (.vert, .tesc, .comp, .task, .mesh; a .tese once per
+# partitioning mode, as lodbench's own) is compiled at build time with glslangValidator, its own folder and lodbench's
 # shared shader includes on the include path, and its SPIR-V is linked into the library: a shader
 # error fails the build with the compiler's message, the plugin is one file, and that file's digest
 # (in every case's identity) covers its shaders too.
@@ -39,11 +39,11 @@ function(lodbench_add_scheme target)
     if(ext STREQUAL ".tese")
       set(outs ${stem}_integer.tese.spv ${stem}_fractional_even.tese.spv ${stem}_fractional_odd.tese.spv)
       set(spacings equal_spacing fractional_even_spacing fractional_odd_spacing)
-    elseif(ext MATCHES "^\\.(vert|tesc|comp)$")
+    elseif(ext MATCHES "^\\.(vert|tesc|comp|task|mesh)$")
       set(outs ${name}.spv)
       set(spacings "")
     else()
-      message(FATAL_ERROR "lodbench_add_scheme(${target}): ${src}: a scheme's shaders are .vert, .tesc, .tese or .comp "
+      message(FATAL_ERROR "lodbench_add_scheme(${target}): ${src}: a scheme's shaders are .vert, .tesc, .tese, .comp, .task or .mesh "
                           "(the fragment and histogram stages are lodbench's own)")
     endif()
     foreach(out IN LISTS outs)

@@ -44,6 +44,8 @@ std::vector<std::string> shadersOf(const Scheme& scheme) {
     for (Partitioning p : {Partitioning::Integer, Partitioning::FractionalEven, Partitioning::FractionalOdd})
       out.push_back(info.tese + "_" + partitioningName(p) + ".tese.spv");
   }
+  if (!info.task.empty()) out.push_back(info.task + ".task.spv");
+  if (!info.mesh.empty()) out.push_back(info.mesh + ".mesh.spv");
   if (!info.compute.empty()) out.push_back(info.compute + ".comp.spv");
   return out;
 }
@@ -95,7 +97,7 @@ bool pluginsSupported(std::string* why) {
   if (why)
     *why = LODBENCH_FUZZ_BUILD ? "it is a fuzzing build"
                                : "it was built with -DLODBENCH_STATIC_RUNTIME=ON (its own static C++ runtime, which a "
-                                 "plugin cannot share); build lodbench without it to use plugins";
+                                 "plugin cannot share): build lodbench without it to use plugins";
   return false;
 #endif
 }
