@@ -20,6 +20,7 @@ const Scheme& cdlodScheme();
 const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
 const Scheme& chunkedScheme();
+const Scheme& clustersScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
 const Scheme& uniformCullScheme();
@@ -54,6 +55,7 @@ static std::vector<const Scheme*>& registered() {
       &cbtMsScheme(),
       // Precomputed irregular meshes (after the twins, so every earlier scheme keeps its chart style).
       &chunkedScheme(),
+      &clustersScheme(),
       // clang-format on
   };
   return schemes;

@@ -1,0 +1,354 @@
+// clusters (schemes/clusters.cpp): its offline DAG and its cut. The DAG: at most 128 triangles a
+// cluster, on the lattice, never folded over; errors exact and never falling up the DAG, boxes
+// nested; every group's outer border bit-identical to its simplification's. Cuts by the scheme's
+// rule, assembled on the CPU as shaders/clusters.vert places them, are closed and cover the terrain
+// once (metrics/mesh_cracks.h), and two planted defects break them: unlocked group borders crack,
+// a non-monotone error overlaps two levels. On lavapipe: the drawn vertices are the DAG's samples,
+// and a small sweep finds no crack site or crack pixel and err_max_px within the stated factor
+// of max_error_px on frames without unmet clusters (ClustersSweep.FullSweep, heavy: every view
+// that stresses the bound, procedural and SRTM crop).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "camera/camera_path.h"
+#include "config/config.h"
+#include "dem_crop.h"
+#include "gpu_fixture.h"
+#include "metrics/mesh_cracks.h"
+#include "render/renderer.h"
+#include "render/scheme.h"
+#include "schemes/preprocess/cluster_dag.h"
+#include "schemes/preprocess/tess_deviation.h"
+#include "schemes/registry.h"
+#include "sweep/runner.h"
+#include "terrain/heightfield.h"
+
+using namespace lb;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+Heightfield procedural(int size, float heightScale = 150.0f) {
+  TerrainSpec s;
+  s.size = size;
+  s.seed = 3;
+  s.extent = 1000.0f;
+  s.heightScale = heightScale;
+  return makeProcedural(s);
+}
+
+bool contains(const DagBox& outer, const DagBox& inner) {
+  return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::greaterThanEqual(outer.hi, inner.hi));
+}
+
+double boxDistance(const DagBox& b, glm::dvec3 p) {
+  const glm::dvec3 d = glm::max(glm::max(glm::dvec3(b.lo) - p, p - glm::dvec3(b.hi)), glm::dvec3(0.0));
+  return glm::length(d);
+}
+
+// The scheme's cut in lattice units (heights in sample spacings times `spacing`): groups coarse
+// enough when error / distance <= t, seen from `eye`.
+std::vector<int> cut(const ClusterDag& dag, glm::dvec3 eye, double t) {
+  std::vector<char> coarse(dag.groups.size());
+  for (size_t g = 0; g < dag.groups.size(); ++g) {
+    const double d = boxDistance(dag.groups[g].box, eye);
+    coarse[g] = dag.groups[g].error <= 0 || (d > 0 && dag.groups[g].error / d <= t);
+  }
+  std::vector<int> out;
+  for (size_t k = 0; k < dag.clusters.size(); ++k) {
+    const DagCluster& c = dag.clusters[k];
+    if ((c.madeBy < 0 || coarse[size_t(c.madeBy)]) && (c.group < 0 || !coarse[size_t(c.group)])) out.push_back(int(k));
+  }
+  return out;
+}
+
+// The cut's triangles in world space, each vertex as shaders/clusters.vert computes it (terrain at
+// the origin, one lattice cell a sample spacing, heights at samples).
+std::vector<glm::vec3> assemble(const Heightfield& hf, const ClusterDag& dag, const std::vector<int>& cut) {
+  const glm::vec2 cell(hf.extent / float(hf.width - 1), hf.extent / float(hf.height - 1));
+  std::vector<glm::vec3> out;
+  for (int k : cut)
+    for (uint32_t i : dag.clusters[size_t(k)].indices) {
+      const glm::vec2 g = dag.clusters[size_t(k)].vertices[i];
+      out.emplace_back(g.x * cell.x, hf.at(int(g.x), int(g.y)), g.y * cell.y);
+    }
+  return out;
+}
+
+// Twice the cut's area in lattice cells, exactly (integer vertices).
+int64_t area2(const ClusterDag& dag, const std::vector<int>& cut) {
+  int64_t sum = 0;
+  for (int k : cut) {
+    const DagCluster& c = dag.clusters[size_t(k)];
+    for (size_t i = 0; i < c.indices.size(); i += 3) {
+      const glm::ivec2 a(c.vertices[c.indices[i]]), b(c.vertices[c.indices[i + 1]]), d(c.vertices[c.indices[i + 2]]);
+      sum += int64_t(b.x - a.x) * (d.y - a.y) - int64_t(b.y - a.y) * (d.x - a.x);
+    }
+  }
+  return sum;
+}
+
+MeshCrackResult cracksOf(const Heightfield& hf, const std::vector<glm::vec3>& tris) {
+  return meshCracks(tris, {glm::vec2(0.0f), glm::vec2(hf.extent)});
+}
+
+// Eyes over the terrain in lattice units, heights in sample spacings: corners, centre, low and high.
+std::vector<glm::dvec3> eyes(const Heightfield& hf) {
+  const double w = hf.width - 1, h = hf.height - 1;
+  return {{0, 20, 0}, {w / 2, 5, h / 2}, {w, 60, h / 3}, {w / 4, 200, h}};
+}
+
+}  // namespace
+
+TEST(ClusterDag, ClustersBoundedErrorsExactAndMonotoneBordersKept) {
+  for (int size : {129, 200}) {  // a power of two plus one, and a terrain the tiles clip
+    SCOPED_TRACE(size);
+    const Heightfield hf = procedural(size);
+    const ClusterDag dag = buildClusterDag(hf);
+    const double spacing = dag.spacing;
+    ASSERT_GE(dag.levels, 4);
+    size_t finest = 0, roots = 0;
+    for (const DagCluster& c : dag.clusters) {
+      EXPECT_GT(c.triangles(), 0u);
+      EXPECT_LE(c.triangles(), uint32_t(kMaxClusterTriangles));
+      EXPECT_TRUE(contains(c.bounds, c.tight));
+      double worst = 0;
+      for (size_t i = 0; i < c.indices.size(); i += 3) {
+        glm::dvec2 p[3];
+        for (int k = 0; k < 3; ++k) p[k] = glm::dvec2(c.vertices[c.indices[i + size_t(k)]]);
+        for (const glm::dvec2& q : p) EXPECT_EQ(q, glm::floor(q)) << "off the lattice";
+        EXPECT_GT((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x), 0.0)
+            << "a triangle folded over (or degenerate) in x, z";
+        worst = std::max(worst, triangleDeviation(hf, p[0], p[1], p[2]));
+      }
+      if (c.madeBy < 0) {
+        ++finest;
+        EXPECT_EQ(c.error, float(worst / spacing)) << "a finest cluster's own error is its triangles'";
+      } else {
+        const DagGroup& g = dag.groups[size_t(c.madeBy)];
+        EXPECT_EQ(c.error, g.error);
+        EXPECT_LE(float(worst / spacing), g.measured);
+      }
+      roots += c.group < 0;
+    }
+    for (const DagGroup& g : dag.groups) {
+      ASSERT_FALSE(g.made.empty());
+      EXPECT_LT(g.simplifiedTriangles, g.inputTriangles);
+      EXPECT_GE(g.error, g.measured);
+      for (int in : g.inputs) {
+        EXPECT_GE(g.error, dag.clusters[size_t(in)].error) << "an error falls up the DAG";
+        EXPECT_TRUE(contains(g.box, dag.clusters[size_t(in)].bounds)) << "a box shrinks up the DAG";
+      }
+      EXPECT_EQ(groupBorder(dag, g.inputs), groupBorder(dag, g.made)) << "a group's border moved";
+      double worst = 0;  // the simplification's exact error, recomputed
+      for (int m : g.made) {
+        const DagCluster& c = dag.clusters[size_t(m)];
+        for (size_t i = 0; i < c.indices.size(); i += 3)
+          worst = std::max(worst, triangleDeviation(hf, glm::dvec2(c.vertices[c.indices[i]]),
+                                                    glm::dvec2(c.vertices[c.indices[i + 1]]),
+                                                    glm::dvec2(c.vertices[c.indices[i + 2]])));
+      }
+      EXPECT_EQ(g.measured, float(worst / spacing));
+    }
+    // The roots are a few times fewer triangles than the finest mesh (the terrain's outline stays
+    // locked, at full resolution, in every group that holds it).
+    uint64_t rootTriangles = 0;
+    for (const DagCluster& c : dag.clusters) rootTriangles += c.group < 0 ? c.triangles() : 0;
+    const uint64_t full = uint64_t(hf.width - 1) * uint64_t(hf.height - 1) * 2;
+    std::printf(
+        "[ClusterDag] %dx%d: %zu finest clusters, %zu clusters, %zu groups, %d levels, %zu roots of %llu "
+        "triangles (finest %llu), %.3f s\n",
+        hf.width, hf.height, finest, dag.clusters.size(), dag.groups.size(), dag.levels, roots,
+        (unsigned long long)rootTriangles, (unsigned long long)full, dag.buildSeconds);
+    EXPECT_LT(rootTriangles * 4, full);
+  }
+}
+
+TEST(ClusterDag, EveryCutIsClosedAndPlantedDefectsBreakIt) {
+  const Heightfield hf = procedural(129);
+  const ClusterDag dag = buildClusterDag(hf);
+  const int64_t terrain2 = int64_t(hf.width - 1) * (hf.height - 1) * 2;
+  int mixed = 0;
+  for (const glm::dvec3& eye : eyes(hf))
+    for (double t : {0.002, 0.01, 0.05}) {
+      const std::vector<int> c = cut(dag, eye, t);
+      int lo = 99, hi = -1;
+      for (int k : c) {
+        lo = std::min(lo, dag.clusters[size_t(k)].level);
+        hi = std::max(hi, dag.clusters[size_t(k)].level);
+      }
+      mixed += hi - lo >= 2;
+      EXPECT_EQ(area2(dag, c), terrain2) << "the cut covers the terrain once";
+      const MeshCrackResult r = cracksOf(hf, assemble(hf, dag, c));
+      EXPECT_EQ(r.crackSites, 0);
+      EXPECT_EQ(r.unpairedEdges, 0) << "every interior edge pairs";
+    }
+  EXPECT_GE(mixed, 4) << "cuts whose levels differ by two or more";
+
+  // Unlocked group borders: the same cuts crack.
+  const ClusterDag loose = buildClusterDag(hf, false);
+  long sites = 0;
+  for (const glm::dvec3& eye : eyes(hf))
+    for (double t : {0.002, 0.01, 0.05}) sites += cracksOf(hf, assemble(hf, loose, cut(loose, eye, t))).crackSites;
+  EXPECT_GT(sites, 0) << "unlocked borders";
+
+  // A non-monotone error: a group below another made worse than it. Where the upper group is
+  // coarse enough and the lower one is not, both draw: the cut covers that place twice.
+  ClusterDag bad = dag;
+  int lower = -1, upper = -1;
+  for (size_t g = 0; g < bad.groups.size() && lower < 0; ++g)
+    for (int in : bad.groups[g].inputs)
+      if (bad.clusters[size_t(in)].madeBy >= 0) {
+        lower = bad.clusters[size_t(in)].madeBy;
+        upper = int(g);
+        break;
+      }
+  ASSERT_GE(lower, 0);
+  bad.groups[size_t(lower)].error = bad.groups[size_t(upper)].error * 4 + 1;
+  for (int m : bad.groups[size_t(lower)].made) bad.clusters[size_t(m)].error = bad.groups[size_t(lower)].error;
+  // Seen from far above, with the bound between the two errors.
+  const glm::dvec3 far(64, 1e4, 64);
+  const double t = bad.groups[size_t(upper)].error * 2 / boxDistance(bad.groups[size_t(upper)].box, far);
+  const std::vector<int> c = cut(bad, far, t);
+  EXPECT_GT(area2(bad, c), terrain2) << "a non-monotone error";
+  EXPECT_EQ(area2(dag, cut(dag, far, t)), terrain2);
+}
+
+namespace {
+
+const std::string kConfigs = std::string(LODBENCH_SOURCE_DIR) + "/configs";
+
+class ClustersGpu : public lbtest::GpuTest {};
+
+std::vector<json> sweep(const json& cfg, const std::string& tag) {
+  Config c = parseConfig(cfg.dump(), tag + ".json", kConfigs);
+  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_clusters_" + tag + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  RunOptions o;
+  o.outDir = dir.string();
+  o.progress = false;
+  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
+  RunTotals t = runSweep(c, o);
+  EXPECT_EQ(t.failed, 0) << tag;
+  EXPECT_EQ(t.validationErrors, 0) << tag;
+  std::vector<json> cases;
+  for (const auto& e : fs::directory_iterator(dir / "cases")) cases.push_back(json::parse(std::ifstream(e.path())));
+  fs::remove_all(dir);
+  return cases;
+}
+
+std::map<int, double> perFrame(const json& c, const std::string& key) {
+  std::map<int, double> out;
+  for (const json& f : c["frames"])
+    if (f.contains(key) && f[key].is_number()) out[f["frame"].get<int>()] = f[key].get<double>();
+  return out;
+}
+
+// The stated factor, as chunked's: a vertical error e at distance D >= the box distance projects to
+// at most e K (1 + tx^2 + ty^2) / D px, tx and ty the tangents of the half fields of view
+// (docs/draw-paths.md); the widest fov of a path gives its factor.
+struct SweepFigures {
+  int closed = 0, checked = 0, unmet = 0;
+  double worst = 0;
+};
+SweepFigures checkSweep(json cfg, const std::vector<std::string>& pathNames, bool dem, const std::string& tag) {
+  const double tau = cfg["schemes"][0]["params"]["max_error_px"], width = cfg["resolution"][0],
+               height = cfg["resolution"][1];
+  std::map<std::string, double> factor;
+  cfg["paths"] = json::array();
+  for (const std::string& name : pathNames) {
+    cfg["paths"].push_back("paths/" + name + ".csv");
+    double fov = 0;
+    for (const auto& k : loadCameraPath(kConfigs + "/paths/" + name + ".csv").keys) fov = std::max(fov, k.fovDeg);
+    const double ty = std::tan(fov * M_PI / 360.0), tx = ty * width / height;
+    factor[name] = 1 + tx * tx + ty * ty;
+  }
+  if (dem) {
+    const TerrainSpec crop = lbtest::demCrop();
+    cfg["terrain"] = {
+        {"type", "hgt"}, {"file", crop.file}, {"extent", crop.extent}, {"height_scale", crop.heightScale}};
+  }
+  SweepFigures s;
+  for (const json& c : sweep(cfg, tag)) {
+    const std::string id = c["case_id"];
+    EXPECT_EQ(c["status"], "ok") << id << ": " << c["reason"];
+    double f = 0;
+    for (const auto& [name, v] : factor)
+      if (id.find(name) != std::string::npos) f = std::max(f, v);
+    EXPECT_GT(f, 1.0) << id;
+    for (auto [fr, v] : perFrame(c, "cracks_analytic")) EXPECT_EQ(v, 0) << id << " frame " << fr;
+    for (auto [fr, v] : perFrame(c, "cracks_pixels")) EXPECT_EQ(v, 0) << id << " frame " << fr;
+    s.closed += int(perFrame(c, "cracks_analytic").size());
+    const std::map<int, double> unmetAt = perFrame(c, "clusters_unmet_clusters");
+    for (auto [fr, err] : perFrame(c, "err_max_px")) {
+      if (unmetAt.count(fr) && unmetAt.at(fr) > 0) {
+        ++s.unmet;
+        continue;
+      }
+      EXPECT_LE(err, f * tau) << id << " frame " << fr;
+      s.worst = std::max(s.worst, err / tau);
+      ++s.checked;
+    }
+  }
+  std::printf("[Clusters] %s: %d frames closed; %d within the factor (worst err_max/bound %.3f), %d unmet left out\n",
+              tag.c_str(), s.closed, s.checked, s.worst, s.unmet);
+  return s;
+}
+
+json sweepConfig(int size, double fps, int every) {
+  return {{"name", "clusters"},
+          {"resolution", {160, 90}},
+          {"grid", 16},
+          {"fps", fps},
+          {"warmup_frames", 0},
+          {"repetitions", 1},
+          {"terrain", {{"type", "procedural"}, {"size", size}, {"seed", 3}, {"extent", 1000}, {"height_scale", 150}}},
+          {"schemes", {{{"name", "clusters"}, {"params", {{"max_error_px", 2.0}}}}}},
+          {"measure", {{"every", every}, {"passes", {"cracks", "error"}}}}};
+}
+
+}  // namespace
+
+// The drawn mesh as the GPU placed it: every vertex at its heightfield sample.
+TEST_F(ClustersGpu, DrawnVerticesAreSamples) {
+  const Heightfield hf = procedural(129);
+  Renderer r(lbtest::gpu(), hf, {160, 90, 16});
+  r.setScheme(*findScheme("clusters"), resolveParams(findScheme("clusters")->info(), {}));
+  const CameraPose pose = samplePose(loadCameraPath(kConfigs + "/paths/edgeon.csv"), 4, 9, hf);
+  r.measureHistogram(pose, pose);
+  const std::vector<glm::vec3>& m = r.capturedMesh();
+  ASSERT_GT(m.size(), 0u);
+  const float cell = hf.extent / float(hf.width - 1);
+  long off = 0;
+  for (const glm::vec3& v : m) {
+    const float gx = v.x / cell, gz = v.z / cell;
+    const int x = int(std::lround(gx)), z = int(std::lround(gz));
+    off += std::abs(gx - float(x)) > 1e-3f || std::abs(gz - float(z)) > 1e-3f || v.y != hf.at(x, z);
+  }
+  EXPECT_EQ(off, 0);
+}
+
+// Cheap: two views on a small procedural terrain, a few measured frames.
+TEST(ClustersSweep, ClosedAndWithinTheStatedFactor) {
+  const SweepFigures s = checkSweep(sweepConfig(129, 2, 4), {"flyover", "lowalt"}, false, "cheap");
+  EXPECT_GT(s.closed, 4);
+  EXPECT_GT(s.checked, 2);
+}
+
+// Heavy: every view that stresses the bound on the procedural terrain and the SRTM crop.
+TEST(ClustersSweep, FullSweep) {
+  SweepFigures s =
+      checkSweep(sweepConfig(257, 4, 3), {"flyover", "lowalt", "grazing", "edgeon", "topdown"}, false, "paths");
+  const SweepFigures d = checkSweep(sweepConfig(257, 4, 3), {"flyover", "lowalt"}, true, "dem");
+  EXPECT_GT(s.closed + d.closed, 50);
+  EXPECT_GT(s.checked + d.checked, 20);
+}
