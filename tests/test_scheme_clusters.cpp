@@ -352,3 +352,28 @@ TEST(ClustersSweep, FullSweep) {
   EXPECT_GT(s.closed + d.closed, 50);
   EXPECT_GT(s.checked + d.checked, 20);
 }
+// The same terrain at x0.01 and x100 (extent and heights) gives the same DAG: the same triangles in
+// every cluster and group, errors (sample spacings) equal up to float rounding.
+TEST(ClusterDag, SameDagAtEveryWorldScale) {
+  auto build = [](double scale) {
+    TerrainSpec s;
+    s.size = 129;
+    s.seed = 7;
+    s.extent = float(1000 * scale);
+    s.heightScale = float(120 * scale);
+    return buildClusterDag(makeProcedural(s));
+  };
+  const ClusterDag base = build(1);
+  for (double scale : {0.01, 100.0}) {
+    SCOPED_TRACE(scale);
+    const ClusterDag dag = build(scale);
+    ASSERT_EQ(dag.clusters.size(), base.clusters.size());
+    ASSERT_EQ(dag.groups.size(), base.groups.size());
+    for (size_t k = 0; k < dag.clusters.size(); ++k) {
+      EXPECT_EQ(dag.clusters[k].vertices, base.clusters[k].vertices);
+      EXPECT_EQ(dag.clusters[k].indices, base.clusters[k].indices);
+      EXPECT_EQ(dag.clusters[k].group, base.clusters[k].group);
+      EXPECT_NEAR(dag.clusters[k].error, base.clusters[k].error, 1e-5 * (base.clusters[k].error + 1e-3));
+    }
+  }
+}

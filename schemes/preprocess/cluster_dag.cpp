@@ -25,6 +25,12 @@ constexpr int kTileCells = 8;  // 8 x 8 cells: 128 triangles, the finest cluster
 // collapses that fold a triangle over in (x, z), and its quadric distance becomes about this
 // times the vertical distance, the error the cut projects.
 constexpr double kFlatten = 1.0 / 16.0;
+// Heights as the simplifier sees them are rounded to this many steps a sample spacing: the same
+// terrain at another world scale has heights rounded differently in their last bits, which the
+// simplifier's quadrics (differences of nearly equal numbers) would magnify into other collapses;
+// rounded, its input is bit for bit the same unless a sample lies within float rounding of a step's
+// midpoint. The recorded errors use the exact heights.
+constexpr double kHeightSteps = 4.0;
 
 // Triangles as global vertex ids (z * width + x) while the DAG is built.
 using Tris = std::vector<uint32_t>;
@@ -152,7 +158,7 @@ struct Builder {
     std::vector<float> pos(verts.size() * 3);
     for (size_t i = 0; i < verts.size(); ++i) {
       pos[i * 3] = float(point(verts[i]).x);
-      pos[i * 3 + 1] = float(double(height(verts[i])) / spacing * kFlatten);
+      pos[i * 3 + 1] = float(std::round(double(height(verts[i])) / spacing * kHeightSteps) / kHeightSteps * kFlatten);
       pos[i * 3 + 2] = float(point(verts[i]).y);
     }
     const size_t tris = t.size() / 3;
