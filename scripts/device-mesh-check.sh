@@ -22,6 +22,11 @@ src=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt")
 if [[ -n $src && $src != "$PWD" && ! -e $src ]]; then
   mkdir -p "$(dirname "$src")" && ln -s "$PWD" "$src"
 fi
+# So is the build folder, where a test finds the lodbench binary (MeshPath.* runs it).
+bin=$(sed -n 's/^CMAKE_CACHEFILE_DIR:INTERNAL=//p' "$build/CMakeCache.txt")
+if [[ -n $bin && $bin != "$build" && ! -e $bin/lodbench ]]; then
+  mkdir -p "$bin" && ln -sf "$build/lodbench" "$bin/lodbench"
+fi
 export LODBENCH_SHADER_DIR=$build/shaders
 [[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
 "$build/lodbench" devices | grep -E '^\[|mesh shaders' || true
