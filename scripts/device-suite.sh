@@ -12,8 +12,9 @@
 #                               [--deadline S] [--first REGEX] [--keep-claims]
 #        scripts/device-suite.sh BUILD_DIR ROOT merge
 #   CONFIG      default configs/suite/gpu-h100.json; written once to ROOT/config.json by
-#               scripts/run-suite.sh --dry-run (the SRTM tile in place of the crop where found,
-#               the largest terrain sized to the device; needs python3) unless ROOT/config.json exists
+#               scripts/run-suite.sh --dry-run (the SRTM tile in place of the crop where found; for
+#               the suite's own gpu.json and gpu-h100.json the largest terrain sized to the device;
+#               needs python3) unless ROOT/config.json exists
 #   --and       one more run in the same queue: its shards are taken after ROOT's, by the same
 #               workers, so one call keeps every GPU busy across several configs
 #   --gpus      workers: a count N (Vulkan devices 0..N-1, default nvidia-smi's count) or a list of
@@ -60,7 +61,12 @@ jobs=() counts=()
 for r in "${!roots[@]}"; do
   rt=${roots[$r]}
   mkdir -p "$rt"
-  [[ -f $rt/config.json ]] || scripts/run-suite.sh --config "${configs[$r]}" --out "$rt" --dry-run >"$rt/dry-run.txt"
+  # The suite's largest terrain grows to the device's largest (run-suite.sh --largest auto); any
+  # other config keeps the terrains it names.
+  largest=off
+  [[ $(basename "${configs[$r]}") =~ ^gpu(-h100)?\.json$ ]] && largest=auto
+  [[ -f $rt/config.json ]] ||
+    scripts/run-suite.sh --config "${configs[$r]}" --out "$rt" --dry-run --largest "$largest" >"$rt/dry-run.txt"
   nvidia-smi --query-gpu=index,name,uuid,driver_version,power.limit,clocks.sm,clocks.max.sm --format=csv >>"$rt/gpus.txt" || true
   mapfile -t workloads < <("$LODBENCH" run "$rt/config.json" --dry-run 2>/dev/null | grep -v '^lodbench' |
     sed 's/^[^_]*_//' | awk '!seen[$0]++')
