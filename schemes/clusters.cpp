@@ -4,7 +4,9 @@
 // with the group's outer border locked and split into the next level's clusters, drawn where the
 // cut of the DAG crosses the screen-space error bound. Draw path: instanced grid
 // (render/instanced.h), every cluster its own footprint in the one vertex and index buffer, one
-// indexed draw per selected cluster; shader: shaders/clusters.vert. Design note: docs/draw-paths.md.
+// indexed draw per selected cluster; shader: shaders/clusters.vert (its vertex function,
+// shaders/clusters_vertex.glsl, is the mesh twin's too: schemes/clusters_ms.cpp draws the same cut
+// from this object's records and meshTable()). Design note: docs/draw-paths.md.
 //
 // Offline (schemes/preprocess/cluster_dag.h, cached by the terrain's heights, groups of a level
 // simplified in parallel by meshoptimizer with meshopt_SimplifyLockBorder). Every constant is
@@ -52,6 +54,21 @@ class ClustersLod : public InstancedLod {
     coarse_.resize(dag_->groups.size());
   }
   const std::vector<Footprint>& footprints() const override { return footprints_; }
+  // clusters-ms's table (layout: shaders/clusters_params.h): the footprints, packed.
+  std::vector<uint32_t> meshTable() const override {
+    std::vector<uint32_t> words = {uint32_t(footprints_.size())};
+    words.resize(1 + 3 * footprints_.size());
+    for (size_t k = 0; k < footprints_.size(); ++k) {
+      const Footprint& f = footprints_[k];
+      words[1 + 3 * k] = uint32_t(words.size());
+      for (const glm::vec2& v : f.vertices) words.push_back(uint32_t(v.x) | uint32_t(v.y) << 16);
+      words[2 + 3 * k] = uint32_t(words.size());
+      for (size_t i = 0; i < f.indices.size(); i += 3)
+        words.push_back(f.indices[i] | f.indices[i + 1] << 8 | f.indices[i + 2] << 16);
+      words[3 + 3 * k] = uint32_t(f.vertices.size()) | uint32_t(f.indices.size() / 3) << 16;
+    }
+    return words;
+  }
 
   void select(const FrameUniforms& frame, Selection& out) const override {
     out.instances.resize(footprints_.size());
@@ -71,7 +88,7 @@ class ClustersLod : public InstancedLod {
       if (!fineEnough || !parentTooCoarse || cdlod::outsidePlanes(box(c.tight), planes)) continue;
       if (c.madeBy < 0 && screenError(c.error, c.bounds) > tau_) ++unmet;
       InstanceRecord r;
-      r.a = glm::vec4(0.0f, float(c.level), 0.0f, 0.0f);
+      r.a = glm::vec4(0.0f, float(c.level), float(k), 0.0f);
       out.instances[k].push_back(r);
     }
     out.counters = {double(unmet)};

@@ -21,6 +21,7 @@ const Scheme& cdlodSseScheme();
 const Scheme& clipmapScheme();
 const Scheme& chunkedScheme();
 const Scheme& clustersScheme();
+const Scheme& clustersMsScheme();
 const Scheme& cbtScheme();
 const Scheme& cbtTsScheme();
 const Scheme& uniformCullScheme();
@@ -56,6 +57,7 @@ static std::vector<const Scheme*>& registered() {
       // Precomputed irregular meshes (after the twins, so every earlier scheme keeps its chart style).
       &chunkedScheme(),
       &clustersScheme(),
+      &clustersMsScheme(),
       // clang-format on
   };
   return schemes;

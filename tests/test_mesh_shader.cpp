@@ -4,10 +4,11 @@
 // shipped path, over a procedural terrain and the committed SRTM crop: sphere-ms draws exactly the
 // triangles the pattern generator makes at the factors its task shader chose (read back through
 // the factor capture), and sphere with integer partitioning draws as many at the same factors;
-// cdlod-ms and cbt-ms draw exactly their twins' triangles (clipper counts on every timed frame,
-// histogram totals on every measured one); every mesh scheme has no crack site and no crack pixel,
-// runs every render and timing mode, and the validation layer stays silent. MeshPath.* checks the
-// skip itself on every device, by switching the feature off (LODBENCH_TEST_DISABLE).
+// cdlod-ms, cbt-ms and clusters-ms draw exactly their twins' triangles (clipper counts on every
+// timed frame, histogram totals on every measured one); every mesh scheme has no crack site and no
+// crack pixel, runs every render and timing mode, and the validation layer stays silent.
+// MeshPath.* checks the skip itself on every device, by switching the feature off
+// (LODBENCH_TEST_DISABLE).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -138,8 +139,9 @@ TEST_F(MeshShader, SphereMsDrawsTheGeneratorsTrianglesAtTheFactorsItChose) {
 // measured frame; images of every mode and the depth and front-end timing modes on the mesh path;
 // no validation message.
 TEST_F(MeshShader, TwinsDrawTheirTwinsTrianglesWithoutCracksInEveryMode) {
-  const std::vector<std::pair<std::string, std::string>> twins = {{"cdlod", "cdlod-ms"}, {"cbt", "cbt-ms"}};
-  json schemes = json::array({"cdlod", "cdlod-ms", "cbt", "cbt-ms", "sphere-ms"});
+  const std::vector<std::pair<std::string, std::string>> twins = {
+      {"cdlod", "cdlod-ms"}, {"cbt", "cbt-ms"}, {"clusters", "clusters-ms"}};
+  json schemes = json::array({"cdlod", "cdlod-ms", "cbt", "cbt-ms", "sphere-ms", "clusters", "clusters-ms"});
   const json cfg = {{"name", "mesh-check"},
                     {"resolution", {320, 180}},
                     {"grid", 16},

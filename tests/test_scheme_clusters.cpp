@@ -116,8 +116,10 @@ TEST(ClusterDag, ClustersBoundedErrorsExactAndMonotoneBordersKept) {
     const ClusterDag dag = buildClusterDag(hf);
     const double spacing = dag.spacing;
     ASSERT_GE(dag.levels, 4);
-    size_t finest = 0, roots = 0;
+    size_t finest = 0, roots = 0, mostVertices = 0;
     for (const DagCluster& c : dag.clusters) {
+      mostVertices = std::max(mostVertices, c.vertices.size());
+      EXPECT_LE(c.vertices.size(), size_t(kMaxClusterVertices));
       EXPECT_GT(c.triangles(), 0u);
       EXPECT_LE(c.triangles(), uint32_t(kMaxClusterTriangles));
       EXPECT_TRUE(contains(c.bounds, c.tight));
@@ -166,9 +168,9 @@ TEST(ClusterDag, ClustersBoundedErrorsExactAndMonotoneBordersKept) {
     const uint64_t full = uint64_t(hf.width - 1) * uint64_t(hf.height - 1) * 2;
     std::printf(
         "[ClusterDag] %dx%d: %zu finest clusters, %zu clusters, %zu groups, %d levels, %zu roots of %llu "
-        "triangles (finest %llu), %.3f s\n",
+        "triangles (finest %llu), %.3f s, at most %zu vertices a cluster\n",
         hf.width, hf.height, finest, dag.clusters.size(), dag.groups.size(), dag.levels, roots,
-        (unsigned long long)rootTriangles, (unsigned long long)full, dag.buildSeconds);
+        (unsigned long long)rootTriangles, (unsigned long long)full, dag.buildSeconds, mostVertices);
     EXPECT_LT(rootTriangles * 4, full);
   }
 }
@@ -374,6 +376,32 @@ TEST(ClusterDag, SameDagAtEveryWorldScale) {
       EXPECT_EQ(dag.clusters[k].indices, base.clusters[k].indices);
       EXPECT_EQ(dag.clusters[k].group, base.clusters[k].group);
       EXPECT_NEAR(dag.clusters[k].error, base.clusters[k].error, 1e-5 * (base.clusters[k].error + 1e-3));
+    }
+  }
+}
+
+// clusters-ms's table (shaders/clusters_params.h), decoded as shaders/clusters_ms.mesh reads it,
+// holds every cluster's footprint: the same lattice points and triangles the instanced route draws.
+TEST(ClustersMs, TableHoldsEveryClusterAsItsFootprint) {
+  const Heightfield hf = procedural(129);
+  const Scheme& ms = *findScheme("clusters-ms");
+  ASSERT_EQ(ms.info().path, DrawPath::Mesh);
+  const std::unique_ptr<InstancedLod> lod = ms.instancedLod(hf, resolveParams(ms.info(), {}));
+  const std::vector<Footprint>& fp = lod->footprints();
+  const std::vector<uint32_t> words = lod->meshTable();
+  ASSERT_EQ(words.at(0), fp.size());
+  for (size_t k = 0; k < fp.size(); ++k) {
+    const uint32_t v0 = words.at(1 + 3 * k), t0 = words.at(2 + 3 * k), counts = words.at(3 + 3 * k);
+    ASSERT_EQ(counts & 0xffffu, fp[k].vertices.size());
+    ASSERT_EQ(counts >> 16, fp[k].indices.size() / 3);
+    ASSERT_LE(fp[k].vertices.size(), size_t(LB_CLUSTERS_MAX_VERTICES));
+    for (size_t i = 0; i < fp[k].vertices.size(); ++i) {
+      const uint32_t w = words.at(v0 + i);
+      EXPECT_EQ(glm::vec2(float(w & 0xffffu), float(w >> 16)), fp[k].vertices[i]);
+    }
+    for (size_t t = 0; t < fp[k].indices.size() / 3; ++t) {
+      const uint32_t w = words.at(t0 + t);
+      for (uint32_t c = 0; c < 3; ++c) EXPECT_EQ((w >> (8 * c)) & 0xffu, fp[k].indices[t * 3 + c]);
     }
   }
 }

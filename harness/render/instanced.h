@@ -56,6 +56,9 @@ class InstancedLod {
   // resolution) and terrain origin; must depend on nothing else (popping and matched searches
   // re-run it for other cameras). `out` is reused between frames: clear what you fill.
   virtual void select(const FrameUniforms& frame, Selection& out) const = 0;
+  // A mesh twin's words at LB_BINDING_MESH_TABLE that follow from the terrain (clusters-ms: the
+  // clusters' vertices and triangles), used where the scheme's own Scheme::meshTable is empty.
+  virtual std::vector<uint32_t> meshTable() const { return {}; }
 };
 
 // The GPU-indirect path: LOD passes in compute, on a state buffer that persists across frames,

@@ -64,7 +64,8 @@ class MeshDrawer : public PathDrawer {
       case DrawPath::Mesh:
         throw std::logic_error("scheme '" + info.name + "': a mesh path amplifies another path's LOD");
     }
-    const std::vector<uint32_t> table = env.scheme.meshTable();
+    std::vector<uint32_t> table = env.scheme.meshTable();
+    if (table.empty() && lod_) table = lod_->meshTable();
     if (!table.empty())
       table_ = createBufferWithData(ctx, table.data(), VkDeviceSize(table.size() * sizeof(uint32_t)),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::SchemeTables, env.memory});

@@ -103,10 +103,17 @@ struct Builder {
   }
 
   // Median cuts of the triangles' centroids along the longer side until every part holds at most
-  // kMaxClusterTriangles; ties broken by position in the list, so the split is deterministic.
+  // kMaxClusterTriangles triangles and kMaxClusterVertices vertices; ties broken by position in the list, so the split
+  // is deterministic.
   void split(const Tris& t, std::vector<uint32_t>& order, size_t lo, size_t hi, std::vector<Tris>& out) const {
     const size_t n = hi - lo;
+    std::vector<uint32_t> used;
     if (n <= size_t(kMaxClusterTriangles)) {
+      for (size_t k = lo; k < hi; ++k) used.insert(used.end(), &t[size_t(order[k]) * 3], &t[size_t(order[k]) * 3 + 3]);
+      std::sort(used.begin(), used.end());
+      used.erase(std::unique(used.begin(), used.end()), used.end());
+    }
+    if (n <= size_t(kMaxClusterTriangles) && used.size() <= size_t(kMaxClusterVertices)) {
       Tris part;
       for (size_t k = lo; k < hi; ++k) part.insert(part.end(), &t[size_t(order[k]) * 3], &t[size_t(order[k]) * 3 + 3]);
       out.push_back(std::move(part));
@@ -125,7 +132,7 @@ struct Builder {
         mx[a] = std::max(mx[a], sum(order[k], a));
       }
     const int axis = mx[1] - mn[1] > mx[0] - mn[0] ? 1 : 0;
-    const size_t parts = (n + kMaxClusterTriangles - 1) / kMaxClusterTriangles;
+    const size_t parts = std::max<size_t>((n + kMaxClusterTriangles - 1) / kMaxClusterTriangles, 2);
     const size_t mid = lo + n * (parts / 2) / parts;
     std::nth_element(order.begin() + long(lo), order.begin() + long(mid), order.begin() + long(hi),
                      [&](uint32_t a, uint32_t b) {

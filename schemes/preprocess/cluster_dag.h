@@ -16,8 +16,9 @@
 //      stays, so the group's outer border is kept bit for bit and its neighbours, at any level,
 //      still meet it); positions (x, height / spacing, z) in lattice units, so the input is the
 //      same at every world scale;
-//   3. split the simplified group into clusters of at most kMaxClusterTriangles (median cuts of
-//      the triangles' centroids along the longer side), which are the next level's clusters.
+//   3. split the simplified group into clusters of at most kMaxClusterTriangles triangles and
+//      kMaxClusterVertices vertices (median cuts of the triangles' centroids along the longer
+//      side), which are the next level's clusters.
 // A group that simplification cannot shrink by a tenth stays open and is regrouped on the next
 // level; the build stops when no group shrinks. Clusters never simplified are roots.
 //
@@ -32,11 +33,14 @@
 #include <memory>
 #include <vector>
 
+#include "shaders/clusters_params.h"
+
 namespace lb {
 
 struct Heightfield;
 
-constexpr int kMaxClusterTriangles = 128;
+constexpr int kMaxClusterTriangles = LB_CLUSTERS_MAX_TRIANGLES;
+constexpr int kMaxClusterVertices = LB_CLUSTERS_MAX_VERTICES;
 constexpr int kGroupClusters = 4;
 
 // Lattice x, z and world heights.
