@@ -405,3 +405,24 @@ TEST(ClustersMs, TableHoldsEveryClusterAsItsFootprint) {
     }
   }
 }
+
+// Groups are simplified and clusters finished on any number of threads: the DAG is the same.
+TEST(ClusterDag, SameDagOnAnyThreadCount) {
+  const Heightfield hf = procedural(200);
+  const char* was = std::getenv("LODBENCH_THREADS");
+  const std::string saved = was ? was : "";
+  setenv("LODBENCH_THREADS", "1", 1);
+  const ClusterDag one = buildClusterDag(hf);
+  setenv("LODBENCH_THREADS", "3", 1);
+  const ClusterDag three = buildClusterDag(hf);
+  if (was)
+    setenv("LODBENCH_THREADS", saved.c_str(), 1);
+  else
+    unsetenv("LODBENCH_THREADS");
+  ASSERT_EQ(one.clusters.size(), three.clusters.size());
+  for (size_t k = 0; k < one.clusters.size(); ++k) {
+    EXPECT_EQ(one.clusters[k].vertices, three.clusters[k].vertices);
+    EXPECT_EQ(one.clusters[k].indices, three.clusters[k].indices);
+    EXPECT_EQ(one.clusters[k].error, three.clusters[k].error);
+  }
+}

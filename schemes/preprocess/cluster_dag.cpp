@@ -293,14 +293,21 @@ ClusterDag buildClusterDag(const Heightfield& hf, bool lockBorders) {
   }
 
   // Each cluster's triangles as a footprint: its own lattice points, local indices.
-  for (size_t k = 0; k < dag.clusters.size(); ++k) {
-    DagCluster& c = dag.clusters[k];
-    std::vector<uint32_t> verts(tris[k]);
-    std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-    for (uint32_t v : verts) c.vertices.emplace_back(float(b.point(v).x), float(b.point(v).y));
-    for (uint32_t v : tris[k])
-      c.indices.push_back(uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()));
+  parallelRows(
+      int(dag.clusters.size()),
+      [&](int r0, int r1) {
+        for (size_t k = size_t(r0); k < size_t(r1); ++k) {
+          DagCluster& c = dag.clusters[k];
+          std::vector<uint32_t> verts(tris[k]);
+          std::sort(verts.begin(), verts.end());
+          verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+          for (uint32_t v : verts) c.vertices.emplace_back(float(b.point(v).x), float(b.point(v).y));
+          for (uint32_t v : tris[k])
+            c.indices.push_back(uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()));
+        }
+      },
+      64);
+  for (const DagCluster& c : dag.clusters) {
     dag.levels = std::max(dag.levels, c.level + 1);
     dag.vertexCount += c.vertices.size();
     dag.indexCount += c.indices.size();
