@@ -3,7 +3,6 @@
 // "LOD replay diverged"), every measurement pass on the replayed state, images, and a matched search
 // whose result the equal-error section of the report shows.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include "report/equal_error.h"
 #include "report/run_data.h"
 #include "sweep/runner.h"
+#include "sweep_run.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -38,24 +38,10 @@ json treeRun(const std::string& name) {
           {"images", {{"frames", {0, -1}}, {"modes", {"shaded", "heatmap", "error", "cracks"}}, {"worst", false}}}};
 }
 
-fs::path runIt(const json& cfg, const std::string& tag) {
-  Config c = parseConfig(cfg.dump(), tag + ".json", kConfigs);
-  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_cbt_" + tag + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  RunOptions o;
-  o.outDir = dir.string();
-  o.progress = false;
-  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
-  RunTotals t = runSweep(c, o);
-  EXPECT_EQ(t.failed, 0) << tag;
-  EXPECT_EQ(t.validationErrors, 0) << tag;
-  return dir;
-}
-
 }  // namespace
 
 TEST(CbtSweep, ConvergesReplaysAndMeasuresEveryCase) {
-  const fs::path dir = runIt(treeRun("cbt-sweep"), "sweep");
+  const fs::path dir = lbtest::runConfig(treeRun("cbt-sweep"), "cbt_sweep");
   int cases = 0;
   for (const auto& e : fs::directory_iterator(dir / "cases")) {
     const json c = json::parse(std::ifstream(e.path()));
@@ -99,7 +85,7 @@ TEST(CbtSweep, EqualErrorSectionListsEveryMatchedScheme) {
   cfg["schemes"] = {"cbt", "cbt-ts", "sphere", "cdlod"};
   cfg["match"] = {{"metric", "err_p95_px"}, {"value", 1.0}, {"frames", 2}, {"iterations", 4}};
   cfg["measure"] = {{"every", 4}, {"passes", {"histogram", "error"}}};
-  const fs::path dir = runIt(cfg, "match");
+  const fs::path dir = lbtest::runConfig(cfg, "cbt_match");
   const ReportRun run = loadReportRun(dir.string());
   const EqualErrorSection eq = equalErrorSection(run);
   ASSERT_TRUE(eq.present);
@@ -138,7 +124,7 @@ TEST(CbtSweep, RenderGivesTheRunsOwnImageOfAStatefulFrame) {
   cfg["schemes"] = {{{"name", "cbt"}, {"params", {{"tri_size", 5}}}}, "cbt-ts"};
   cfg["measure"] = {{"every", 0}};
   cfg["images"] = {{"frames", {2, 6}}, {"modes", {"shaded"}}, {"worst", false}, {"resolution", {160, 90}}};
-  const fs::path dir = runIt(cfg, "render");
+  const fs::path dir = lbtest::runConfig(cfg, "cbt_render");
   int compared = 0;
   std::set<uint64_t> instanceCounts;
   for (const auto& e : fs::directory_iterator(dir / "cases")) {

@@ -2,7 +2,6 @@
 // construction on every shipped path and scenario (drawn-mesh check and image holes), with negative
 // controls that crack; cdlod-sse within its error bound; morphing pops less than not morphing.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "render/scheme.h"
 #include "schemes/registry.h"
 #include "sweep/runner.h"
+#include "sweep_run.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -44,32 +44,6 @@ std::vector<std::string> shippedPaths() {
   return out;
 }
 
-// Runs the config and returns its case records; every case must finish without validation errors.
-std::vector<json> sweep(const json& cfg, const std::string& dirForPaths, const std::string& tag) {
-  Config c = parseConfig(cfg.dump(), tag + ".json", dirForPaths);
-  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_instanced_" + tag + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  RunOptions o;
-  o.outDir = dir.string();
-  o.progress = false;
-  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
-  RunTotals t = runSweep(c, o);
-  EXPECT_EQ(t.failed, 0) << tag;
-  EXPECT_EQ(t.validationErrors, 0) << tag;
-  std::vector<json> cases;
-  for (const auto& e : fs::directory_iterator(dir / "cases")) cases.push_back(json::parse(std::ifstream(e.path())));
-  fs::remove_all(dir);
-  return cases;
-}
-
-// Per measured frame of a case: the value of `key` (absent keys are skipped).
-std::vector<std::pair<int, double>> measured(const json& c, const std::string& key) {
-  std::vector<std::pair<int, double>> out;
-  for (const json& f : c["frames"])
-    if (f.contains(key) && f[key].is_number()) out.emplace_back(f["frame"].get<int>(), f[key].get<double>());
-  return out;
-}
-
 json smallRun(const std::string& name, json paths, json schemes, json measure) {
   return {{"name", name},
           {"resolution", {160, 90}},
@@ -90,13 +64,13 @@ TEST(InstancedSchemes, NoCracksAndNoSeamRiskOnEveryShippedPath) {
   json cfg = smallRun("instanced-cracks", shippedPaths(), schemeList(instancedSchemes()),
                       {{"every", 4}, {"passes", {"cracks"}}});
   int frames = 0;
-  for (const json& c : sweep(cfg, kConfigs, "paths")) {
+  for (const json& c : lbtest::sweepCases(cfg, "instanced_paths")) {
     const std::string id = c["case_id"];
     ASSERT_EQ(c["status"], "ok") << id << ": " << c["reason"];
-    for (auto [f, v] : measured(c, "cracks_analytic")) EXPECT_EQ(v, 0) << id << " frame " << f;
-    for (auto [f, v] : measured(c, "cracks_pixels")) EXPECT_EQ(v, 0) << id << " frame " << f;
-    for (auto [f, v] : measured(c, "cdlod_seam_risk")) EXPECT_EQ(v, 0) << id << " frame " << f;
-    frames += int(measured(c, "cracks_analytic").size());
+    for (auto [f, v] : lbtest::perFrame(c, "cracks_analytic")) EXPECT_EQ(v, 0) << id << " frame " << f;
+    for (auto [f, v] : lbtest::perFrame(c, "cracks_pixels")) EXPECT_EQ(v, 0) << id << " frame " << f;
+    for (auto [f, v] : lbtest::perFrame(c, "cdlod_seam_risk")) EXPECT_EQ(v, 0) << id << " frame " << f;
+    frames += int(lbtest::perFrame(c, "cracks_analytic").size());
   }
   EXPECT_GT(frames, 100);
 }
@@ -112,15 +86,15 @@ TEST(InstancedSchemes, NoCracksInEveryScenario) {
     cfg.erase("images");
     cfg.erase("match");
     const std::string tag = e.path().stem().string();
-    for (const json& c : sweep(cfg, kConfigs + "/scenarios", tag)) {
+    for (const json& c : lbtest::sweepCases(cfg, "instanced_" + tag, kConfigs + "/scenarios")) {
       const std::string id = c["case_id"];
       // The far-origin scenario's third terrain sits 10,000 km out, where float positions are 1 m
       // apart: it exists to show every scheme breaking there (tessellated ones included), and the
       // morph's distances break with them. 100 km is asserted like the origin.
       if (tag == "far-origin" && id.find("at10000000") != std::string::npos) continue;
       ASSERT_EQ(c["status"], "ok") << tag << " " << id << ": " << c["reason"];
-      for (auto [f, v] : measured(c, "cracks_analytic")) EXPECT_EQ(v, 0) << tag << " " << id << " frame " << f;
-      for (auto [f, v] : measured(c, "cracks_pixels")) EXPECT_EQ(v, 0) << tag << " " << id << " frame " << f;
+      for (auto [f, v] : lbtest::perFrame(c, "cracks_analytic")) EXPECT_EQ(v, 0) << tag << " " << id << " frame " << f;
+      for (auto [f, v] : lbtest::perFrame(c, "cracks_pixels")) EXPECT_EQ(v, 0) << tag << " " << id << " frame " << f;
     }
     ++scenarios;
   }
@@ -144,15 +118,15 @@ TEST(InstancedSchemes, WithoutTheMorphCdlodCracksAndPopsMore) {
   cfg["resolution"] = {320, 180};
   cfg["fps"] = 30;
   std::map<std::string, json> byId;
-  for (const json& c : sweep(cfg, kConfigs, "morph"))
+  for (const json& c : lbtest::sweepCases(cfg, "instanced_morph"))
     byId[c["scheme"].get<std::string>() + (c["params"].value("morph_on", 1.0) == 0 ? "-off" : "-on")] = c;
   for (const char* scheme : {"cdlod", "cdlod-sse"}) {
     const json& off = byId[std::string(scheme) + "-off"];
     const json& on = byId[std::string(scheme) + "-on"];
     ASSERT_TRUE(off.is_object() && on.is_object()) << scheme;
     double cracksOff = 0, cracksOn = 0;
-    for (auto [f, v] : measured(off, "cracks_analytic")) cracksOff += v;
-    for (auto [f, v] : measured(on, "cracks_analytic")) cracksOn += v;
+    for (auto [f, v] : lbtest::perFrame(off, "cracks_analytic")) cracksOff += v;
+    for (auto [f, v] : lbtest::perFrame(on, "cracks_analytic")) cracksOn += v;
     EXPECT_GT(cracksOff, 0) << scheme << ": the planted defect (no morph) must be detected";
     EXPECT_EQ(cracksOn, 0) << scheme;
     auto stat = [](const json& c, const char* k, const char* s) { return c["summary"][k][s].get<double>(); };
@@ -180,10 +154,10 @@ TEST(InstancedSchemes, CdlodSseKeepsItsBoundWhereItCanBeMet) {
   int checked = 0, unmet = 0;
   double worst = 0;
   for (const json* run : {&cfg, &dem})
-    for (const json& c : sweep(*run, kConfigs, run == &cfg ? "sse" : "sse-dem")) {
+    for (const json& c : lbtest::sweepCases(*run, run == &cfg ? "instanced_sse" : "instanced_sse-dem")) {
       std::map<int, double> unmetAt;
-      for (auto [f, v] : measured(c, "cdlod_sse_unmet_nodes")) unmetAt[f] = v;
-      for (auto [f, err] : measured(c, "err_max_px")) {
+      for (auto [f, v] : lbtest::perFrame(c, "cdlod_sse_unmet_nodes")) unmetAt[f] = v;
+      for (auto [f, err] : lbtest::perFrame(c, "err_max_px")) {
         if (unmetAt.count(f) && unmetAt[f] > 0) {
           ++unmet;
           continue;

@@ -7,7 +7,6 @@
 // frame of the views that stress the bound that the scheme does not flag as unmet, on a
 // procedural terrain and the SRTM crop (InstancedSchemes.* checks every shipped path's cracks).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +28,7 @@
 #include "schemes/preprocess/tess_deviation.h"
 #include "schemes/registry.h"
 #include "sweep/runner.h"
+#include "sweep_run.h"
 #include "terrain/heightfield.h"
 
 using namespace lb;
@@ -175,30 +175,6 @@ namespace {
 
 const std::string kConfigs = std::string(LODBENCH_SOURCE_DIR) + "/configs";
 
-std::vector<json> sweep(const json& cfg, const std::string& tag) {
-  Config c = parseConfig(cfg.dump(), tag + ".json", kConfigs);
-  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_chunked_" + tag + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  RunOptions o;
-  o.outDir = dir.string();
-  o.progress = false;
-  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
-  RunTotals t = runSweep(c, o);
-  EXPECT_EQ(t.failed, 0) << tag;
-  EXPECT_EQ(t.validationErrors, 0) << tag;
-  std::vector<json> cases;
-  for (const auto& e : fs::directory_iterator(dir / "cases")) cases.push_back(json::parse(std::ifstream(e.path())));
-  fs::remove_all(dir);
-  return cases;
-}
-
-std::map<int, double> perFrame(const json& c, const std::string& key) {
-  std::map<int, double> out;
-  for (const json& f : c["frames"])
-    if (f.contains(key) && f[key].is_number()) out[f["frame"].get<int>()] = f[key].get<double>();
-  return out;
-}
-
 }  // namespace
 
 // The stated factor: a vertical error e at distance D >= Ulrich's D projects to at most
@@ -235,18 +211,18 @@ TEST(ChunkedSweep, ClosedAndWithinTheStatedFactor) {
   int checked = 0, unmet = 0, closed = 0;
   double worst = 0;
   for (const json* run : {&cfg, &dem})
-    for (const json& c : sweep(*run, run == &cfg ? "paths" : "dem")) {
+    for (const json& c : lbtest::sweepCases(*run, run == &cfg ? "chunked_paths" : "chunked_dem")) {
       const std::string id = c["case_id"];
       ASSERT_EQ(c["status"], "ok") << id << ": " << c["reason"];
       double f = 0;
       for (const auto& [name, v] : factor)
         if (id.find(name) != std::string::npos) f = std::max(f, v);
       ASSERT_GT(f, 1.0) << id;
-      for (auto [fr, v] : perFrame(c, "cracks_analytic")) EXPECT_EQ(v, 0) << id << " frame " << fr;
-      for (auto [fr, v] : perFrame(c, "cracks_pixels")) EXPECT_EQ(v, 0) << id << " frame " << fr;
-      closed += int(perFrame(c, "cracks_analytic").size());
-      const std::map<int, double> unmetAt = perFrame(c, "chunked_unmet_chunks");
-      for (auto [fr, err] : perFrame(c, "err_max_px")) {
+      for (auto [fr, v] : lbtest::perFrame(c, "cracks_analytic")) EXPECT_EQ(v, 0) << id << " frame " << fr;
+      for (auto [fr, v] : lbtest::perFrame(c, "cracks_pixels")) EXPECT_EQ(v, 0) << id << " frame " << fr;
+      closed += int(lbtest::perFrame(c, "cracks_analytic").size());
+      const std::map<int, double> unmetAt = lbtest::perFrame(c, "chunked_unmet_chunks");
+      for (auto [fr, err] : lbtest::perFrame(c, "err_max_px")) {
         if (unmetAt.count(fr) && unmetAt.at(fr) > 0) {
           ++unmet;
           continue;

@@ -14,6 +14,7 @@
 #include "replay/measure.h"
 #include "replay/settle.h"
 #include "sweep/runner.h"
+#include "sweep_run.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -54,20 +55,6 @@ FrameMetrics measureAt(int frame, const std::function<CameraPose(int)>& pose) {
   for (int k = 2; k <= kPopLags && frame - k >= 0; ++k) older.poses.push_back(pose(frame - k));
   return measureFrame(gpu(), r, *findScheme("sphere"), r.params(), testTerrain(), "t", spec, refs, frame,
                       pose(frame - 1), pose(frame), nullptr, false, &older);
-}
-
-fs::path sweep(const json& cfg, const std::string& tag) {
-  Config c = parseConfig(cfg.dump(), tag + ".json", std::string(LODBENCH_SOURCE_DIR) + "/configs");
-  fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_temporal_" + tag + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  RunOptions o;
-  o.outDir = dir.string();
-  o.progress = false;
-  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
-  RunTotals t = runSweep(c, o);
-  EXPECT_EQ(t.failed, 0) << tag;
-  EXPECT_EQ(t.validationErrors, 0) << tag;
-  return dir;
 }
 
 }  // namespace
@@ -137,7 +124,7 @@ TEST(Settle, CbtAfterTheFastDiveAndOnAStaticCamera) {
       {"paths", {"paths/dive.csv", staticPath.string()}},
       {"schemes", {"cbt", "sphere"}},
       {"measure", {{"every", 3}, {"passes", {"error", "popping"}}}}};
-  const fs::path dir = sweep(cfg, "dive");
+  const fs::path dir = lbtest::runConfig(cfg, "temporal_dive");
   int cases = 0;
   for (const auto& e : fs::directory_iterator(dir / "cases")) {
     json c = json::parse(std::ifstream(e.path()));

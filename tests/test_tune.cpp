@@ -2,7 +2,6 @@
 // tessellation grid) decides whether a target is reachable at all; tuned over it, the scheme
 // reaches it. Also the "tune" field's errors.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "error.h"
 #include "replay/matched.h"
 #include "sweep/runner.h"
+#include "sweep_run.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -51,19 +51,9 @@ std::string configError(const json& cfg) {
 }  // namespace
 
 TEST(Tune, TheOldFixedGridCannotReachTheTargetTheTunedSearchDoes) {
-  Config c = parseConfig(tuneRun().dump(), "tune.json", kConfigs);
-  const fs::path dir = fs::path(::testing::TempDir()) / ("lodbench_tune_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  RunOptions o;
-  o.outDir = dir.string();
-  o.progress = false;
-  o.validation = std::getenv("LODBENCH_VALIDATION") != nullptr;
-  RunTotals t = runSweep(c, o);
-  EXPECT_EQ(t.failed, 0);
-  EXPECT_EQ(t.validationErrors, 0);
+  const fs::path dir = lbtest::runConfig(tuneRun(), "tune");
   int cases = 0;
-  for (const auto& e : fs::directory_iterator(dir / "cases")) {
-    const json cj = json::parse(std::ifstream(e.path()));
+  for (const json& cj : lbtest::caseRecords(dir)) {
     const std::string id = cj["case_id"];
     const json& m = cj["matched"];
     ASSERT_EQ(cj["status"], "ok") << id << ": " << cj["reason"];
