@@ -2,8 +2,7 @@
 #ifndef LB_COMMON_GLSL
 #define LB_COMMON_GLSL
 #include "shared.h"
-
-layout(set = 0, binding = LB_BINDING_HEIGHT) uniform sampler2D heightMap;
+#include "heights.glsl"
 
 float schemeParam(int i) { return frame.params[i / 4][i % 4]; }
 
@@ -11,22 +10,19 @@ float terrainExtent() { return frame.terrain.x; }
 
 // Manual bilinear with texelFetch so CPU metrics can reproduce it exactly (at the origin; a far
 // terrain origin rounds worldXZ first, which is the precision loss the far-origin scenario shows).
+// The corners come from the cell's page (heights.glsl); the arithmetic is the single image's.
 float terrainHeight(vec2 worldXZ) {
-  ivec2 size = textureSize(heightMap, 0);
+  ivec2 size = terrainSamples();
   vec2 t = clamp((worldXZ - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * vec2(size - 1);
   ivec2 i0 = min(ivec2(floor(t)), max(size - 2, ivec2(0)));
   vec2 f = t - vec2(i0);
-  ivec2 i1 = min(i0 + 1, size - 1);
-  float h00 = texelFetch(heightMap, i0, 0).r;
-  float h10 = texelFetch(heightMap, ivec2(i1.x, i0.y), 0).r;
-  float h01 = texelFetch(heightMap, ivec2(i0.x, i1.y), 0).r;
-  float h11 = texelFetch(heightMap, i1, 0).r;
-  return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+  vec4 h = cellCorners(i0);  // h00, h10, h01, h11
+  return mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
 }
 
 // Normal from central differences of the heightfield, one texel apart.
 vec3 terrainNormal(vec2 worldXZ) {
-  ivec2 size = textureSize(heightMap, 0);
+  ivec2 size = terrainSamples();
   vec2 texel = frame.terrain.x / vec2(size - 1);
   float hl = terrainHeight(worldXZ - vec2(texel.x, 0));
   float hr = terrainHeight(worldXZ + vec2(texel.x, 0));

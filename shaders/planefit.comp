@@ -8,11 +8,11 @@
 #define LB_COMPUTE_PASS
 #include "shared.h"
 #include "planefit_params.h"
+#include "heights.glsl"
 
 float computeParam(int i) { return pass.params[i / 4][i % 4]; }
 
 layout(local_size_x = LB_PLANE_FIT_BLOCK, local_size_y = LB_PLANE_FIT_BLOCK) in;
-layout(set = 0, binding = LB_BINDING_HEIGHT) uniform sampler2D heightMap;
 layout(set = 0, binding = LB_BINDING_SCHEME_IMAGE, rgba32f) uniform writeonly image2D lookup;
 
 const int kB = LB_PLANE_FIT_BLOCK;
@@ -30,7 +30,7 @@ bool leastSquares() { return computeParam(LB_PLANEFIT_FIT) > 0.5; }
 
 // Block-centred sample position in world units (least-squares fit).
 vec2 centredXZ(int gi) {
-  vec2 spacing = pass.terrain.x / vec2(max(textureSize(heightMap, 0) - 1, ivec2(1)));
+  vec2 spacing = pass.terrain.x / vec2(max(terrainSamples() - 1, ivec2(1)));
   return (vec2(gi % kB, gi / kB) - 7.5) * spacing;
 }
 
@@ -66,8 +66,8 @@ void main() {
   ivec2 g = ivec2(gl_LocalInvocationID.xy);
   int gi = int(gl_LocalInvocationIndex);
   // Phase one (Listing 9.12): load; blocks past the border repeat the last sample.
-  ivec2 src = min(ivec2(gl_GlobalInvocationID.xy), textureSize(heightMap, 0) - 1);
-  float h = texelFetch(heightMap, src, 0).r;
+  ivec2 src = min(ivec2(gl_GlobalInvocationID.xy), terrainSamples() - 1);
+  float h = heightAt(src);
   bool lsq = leastSquares();
   if (!lsq) {
     // The book reads a UNORM height texture: heights in [0, 1].

@@ -32,7 +32,7 @@ ivec2 blockSpan(int g0, int g1, int samples, int blocks) {
 
 // Largest coplanarity deviation over the blocks that grid rectangle [g0, g1] covers.
 float roughness(ivec2 g0, ivec2 g1) {
-  ivec2 samples = textureSize(heightMap, 0), blocks = textureSize(planeFit, 0);
+  ivec2 samples = terrainSamples(), blocks = textureSize(planeFit, 0);
   ivec2 bx = blockSpan(g0.x, g1.x, samples.x, blocks.x), bz = blockSpan(g0.y, g1.y, samples.y, blocks.y);
   float deviation = 0.0;
   for (int z = bz.x; z <= bz.y; ++z)

@@ -45,6 +45,7 @@ layout(std140, binding = LB_RAYCAST_BINDING_PARAMS) uniform Params {
   uvec4 levels[LB_RAYCAST_MAX_LEVELS];  // per level: offset into mip[], width, height
   vec4 shading;                         // x: one pixel's angle (shadingPixelAngle); y: normal map levels
   uvec4 normalLevels[LB_RAYCAST_MAX_LEVELS];  // per normal map level: offset into normals[], width, height
+  ivec4 pageGrid;  // heights[] in pages (terrain/page_layout.h): cells a page holds along x and z; pages along x
 };
 
 // The ray of this pixel and castRay's reciprocals.
@@ -135,8 +136,11 @@ bool firstRoot(real A, real B, real C, real lo, real hi, out real best) {
 bool hitCell(int ix, int iz, real t0, real t1, out real3 pos) {
   pos = real3(0);
   const real x0 = real(ix) * cell.x, z0 = real(iz) * cell.z;
-  const int i = iz * size.z + ix;
-  const real h00 = heights[i], h10 = heights[i + 1], h01 = heights[i + size.z], h11 = heights[i + size.z + 1];
+  // The cell's page, then the cell in it: its four corners are in that page (the shared border).
+  const ivec2 page = ivec2(ix, iz) / pageGrid.xy, local = ivec2(ix, iz) - page * pageGrid.xy;
+  const int stride = pageGrid.x + 1;
+  const int i = (page.y * pageGrid.z + page.x) * stride * (pageGrid.y + 1) + local.y * stride + local.x;
+  const real h00 = heights[i], h10 = heights[i + 1], h01 = heights[i + stride], h11 = heights[i + stride + 1];
   precise real a = h00, b = h10 - h00, c = h01 - h00, e = h00 - h10 - h01 + h11;
   precise real u0 = (o.x + t0 * d.x - x0) / cell.x, du = d.x / cell.x;
   precise real v0 = (o.z + t0 * d.z - z0) / cell.z, dv = d.z / cell.z;

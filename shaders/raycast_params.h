@@ -2,7 +2,7 @@
 // sizes shared by the C++ side and the shader.
 #ifndef LB_RAYCAST_PARAMS_H
 #define LB_RAYCAST_PARAMS_H
-#define LB_RAYCAST_BINDING_HEIGHTS 0   // float per heightfield sample, row-major
+#define LB_RAYCAST_BINDING_HEIGHTS 0   // float per heightfield sample, page after page (terrain/page_layout.h)
 #define LB_RAYCAST_BINDING_MIP 1       // every max-mipmap level, level 0 first (offsets in the params)
 #define LB_RAYCAST_BINDING_NORMALS 2   // the normal map's RG16F texels, one uint each, all levels
 #define LB_RAYCAST_BINDING_RGBA 3      // out: uint per pixel, bytes R, G, B, A

@@ -3,7 +3,7 @@
 #define LODBENCH_SHARED_H
 
 #define LB_BINDING_FRAME 0         // FrameUniforms, dynamic uniform buffer
-#define LB_BINDING_HEIGHT 1        // heightfield, R32F, read with texelFetch
+#define LB_BINDING_HEIGHT 1        // heightfield pages: LB_HEIGHT_ARRAYS R32F 2D array images (heights.glsl)
 #define LB_BINDING_SCHEME_TEX 2    // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
 #define LB_BINDING_PATCH_BOUNDS 3  // per-patch (minHeight, maxHeight) for culling
 #define LB_BINDING_CAPTURE 4       // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
@@ -16,6 +16,18 @@
 #define LB_BINDING_LOD_STATE 11    // GPU-indirect path: the LOD state the compute passes keep across frames
 #define LB_BINDING_LOD_ARGS 12     // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
 #define LB_BINDING_MESH_TABLE 13   // mesh path: the tessellation patterns' strip table (tess_piece.h)
+#define LB_BINDING_HEIGHT_TABLE 14  // heightfield pages: HeightTableHeader, then one entry per page
+
+// The heightfield's pages (terrain/page_layout.h, docs/tiled-heightfield.md): a descriptor array of
+// this many page arrays (those a terrain does not need repeat the first), and per page one table
+// entry: its layer, its array, its level (0 while fully resident) and a not-resident bit, room kept
+// for streaming.
+#define LB_HEIGHT_ARRAYS 8
+#define LB_PAGE_LAYER_MASK 0x7ffu  // bits 0-10: layer in its array (maxImageArrayLayers is 2048 on the H100)
+#define LB_PAGE_ARRAY_SHIFT 11     // bits 11-14: array
+#define LB_PAGE_ARRAY_MASK 0xfu
+#define LB_PAGE_LEVEL_SHIFT 15  // bits 15-19: level
+#define LB_PAGE_NOT_RESIDENT 0x80000000u
 
 #define LB_MAX_FACTOR 64.0
 #define LB_CAPTURE_STRIDE 8      // floats per patch in the capture buffer
@@ -89,6 +101,12 @@ struct ComputePush {
 };
 static_assert(sizeof(ComputePush) == 16 + LB_SCHEME_PARAM_VEC4S * 16 && sizeof(ComputePush) <= LB_PUSH_CONSTANT_LIMIT,
               "push constant mirror");
+// The head of the page table buffer (std430, shaders/heights.glsl HeightTable); the entries follow.
+struct HeightTableHeader {
+  int32_t samples[4];  // the terrain's samples along x and z; cells a page holds along x and z
+  int32_t pages[4];    // pages along x and z; unused
+};
+static_assert(sizeof(HeightTableHeader) == 32, "std430 mirror");
 }  // namespace lb
 #elif defined(LB_COMPUTE_PASS)
 layout(push_constant) uniform ComputePush {

@@ -13,6 +13,7 @@
 
 #include "gpu_fixture.h"
 #include "render/compute_pass.h"
+#include "render/height_pages.h"
 #include "render/probe.h"
 #include "shaders/shared.h"
 #include "vk/resources.h"
@@ -111,10 +112,7 @@ TEST_F(VkLifetimes, RendererOfAComputePassSchemeReleasesEverythingAtEveryFailedS
 
 TEST_F(VkLifetimes, ComputePassReleasesEverythingAtEveryFailedStep) {
   const lb::Heightfield& terrain = lbtest::testTerrain();
-  lb::Image height =
-      lb::createImage(ctx_, uint32_t(terrain.width), uint32_t(terrain.height), VK_FORMAT_R32_SFLOAT,
-                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-  lb::uploadImage(ctx_, height, terrain.h.data(), terrain.h.size() * sizeof(float));
+  const lb::HeightPages height = lb::createHeightPages(ctx_, terrain, {});
   lb::vk::Unique<VkSampler> sampler = lb::createSampler(ctx_, VK_FILTER_NEAREST);
   lb::Image output =
       lb::createImage(ctx_, 8, 8, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -123,7 +121,7 @@ TEST_F(VkLifetimes, ComputePassReleasesEverythingAtEveryFailedStep) {
   lb::ComputePush push{};
   push.terrain = glm::vec4(terrain.extent, 8.0f, terrain.minHeight, terrain.maxHeight);
   auto pass = [&] {
-    lb::runComputePass(ctx_, "planefit", sampler, height.view, output, push);
+    lb::runComputePass(ctx_, "planefit", sampler, height, output, push);
     return bytesOf(lb::readImageRgba32f(ctx_, output));
   };
   const Output reference = pass();

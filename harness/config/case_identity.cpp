@@ -33,6 +33,7 @@ json terrainInputs(const TerrainSpec& t, FileDigests& files) {
       j["overview"] = t.overview;
     }
   }
+  if (t.page > 0) j["page"] = t.page;  // named only when paged, so digests of earlier sweeps still match
   return j;
 }
 

@@ -75,8 +75,9 @@ static void parseTerrainFields(const ConfigReader& r, const json& t, const std::
   }
   if (spec.type == "voids") spec.heightScale = 1.0f;  // an SRTM tile: metres, like hgt files
   if (gdal) spec.extent = 0.0f;                       // from the file's georeferencing unless "extent" is given
-  // 32768: the largest maxImageDimension2D of current GPUs (an H100 takes 32759^2 in its memory).
-  if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, 32768);
+  // One image stops at 32768, the largest maxImageDimension2D of current GPUs (an H100 takes 32759^2);
+  // a paged terrain ("page") goes past it: the device check before any case says what fits.
+  if (t.contains("size")) spec.size = r.integer(t["size"], ptr + "/size", 2, t.contains("page") ? 262145 : 32768);
   if (t.contains("detail")) {  // procedural and canyon: "fixed" (8 octaves, the default) or "resolution"
     if (spec.type != "procedural" && spec.type != "canyon")
       r.fail(ptr + "/detail", "only procedural and canyon terrains take a 'detail'");
@@ -100,6 +101,8 @@ static void parseTerrainFields(const ConfigReader& r, const json& t, const std::
   if (raw && (spec.rawWidth == 0 || spec.rawHeight == 0)) r.fail(ptr, "raw terrain needs 'width' and 'height'");
   if (t.contains("band")) spec.band = r.integer(t["band"], ptr + "/band", 1, 65535);
   if (t.contains("overview")) spec.overview = r.integer(t["overview"], ptr + "/overview", 1, 30);
+  // Cells a device page holds a side (docs/tiled-heightfield.md); absent: one page, the single image.
+  if (t.contains("page")) spec.page = r.integer(t["page"], ptr + "/page", 1, 65536);
   if (t.contains("window")) {  // [x, y, w, h] in the raster's pixels; checked against its size when read
     const json& w = t["window"];
     if (!w.is_array() || w.size() != 4) r.fail(ptr + "/window", "expected [x, y, width, height] in pixels");
@@ -129,7 +132,7 @@ static std::vector<TerrainSpec> parseTerrain(const ConfigReader& r, const json& 
                                              const std::string& base) {
   r.onlyKeys(t, ptr,
              {"type", "file", "size", "seed", "extent", "height_scale", "width", "height", "origin", "band", "window",
-              "overview", "detail"});
+              "overview", "detail", "page"});
   TerrainSpec spec;
   parseTerrainType(r, t, ptr, spec);
   parseTerrainFields(r, t, ptr, base, spec);
@@ -415,6 +418,11 @@ Config loadConfig(const std::string& file) {
 }
 
 std::string terrainLabel(const TerrainSpec& t) {
+  if (t.page > 0) {  // the same heights in pages: a case of its own beside the single image's
+    TerrainSpec single = t;
+    single.page = 0;
+    return terrainLabel(single) + "-p" + std::to_string(t.page);
+  }
   if (t.originX != 0 || t.originZ != 0) {
     TerrainSpec atOrigin = t;
     atOrigin.originX = atOrigin.originZ = 0;

@@ -13,6 +13,7 @@
 #include "shaders/raycast_params.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
+#include "terrain/page_layout.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -35,16 +36,17 @@ struct Params {
   uint32_t levels[LB_RAYCAST_MAX_LEVELS][4];
   float shading[4];                                 // x: shadingPixelAngle; y: normal map levels
   uint32_t normalLevels[LB_RAYCAST_MAX_LEVELS][4];  // per normal map level: offset (texels), width, height
+  int32_t pageGrid[4];                              // cells a page holds along x and z; pages along x
 };
-static_assert(sizeof(Params<double>) == 368 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
-static_assert(sizeof(Params<float>) == 272 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<double>) == 384 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
+static_assert(sizeof(Params<float>) == 288 + 2 * LB_RAYCAST_MAX_LEVELS * 16);
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 template <typename T>
 void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double cw, double ch, int width, int height,
                 const int grid[4], int samplesX, int samplesZ, float extent, const std::vector<uint32_t>& levels,
-                float pixelAngle, const std::vector<uint32_t>& normalLevels) {
+                float pixelAngle, const std::vector<uint32_t>& normalLevels, const PageLayout& pages) {
   Params<T> p{};
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) p.invViewProj[c * 4 + r] = T(inv[c][r]);
@@ -74,6 +76,7 @@ void fillParams(void* out, const glm::dmat4& inv, const glm::dvec3& eye, double 
   p.shading[0] = pixelAngle;
   p.shading[1] = float(normalLevels.size() / 4);
   std::memcpy(p.normalLevels, normalLevels.data(), normalLevels.size() * sizeof(uint32_t));
+  p.pageGrid[0] = pages.cellsX, p.pageGrid[1] = pages.cellsZ, p.pageGrid[2] = pages.pagesX;
   std::memcpy(out, &p, sizeof p);
 }
 
@@ -92,7 +95,13 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
   if (cellsX_ > LB_RAYCAST_MAX_CELLS || cellsZ_ > LB_RAYCAST_MAX_CELLS || levels_ > LB_RAYCAST_MAX_LEVELS)
     throw FeatureMissing("GPU ray cast: terrain of " + std::to_string(hf.width) + " x " + std::to_string(hf.height) +
                          " samples exceeds the shader's " + std::to_string(LB_RAYCAST_MAX_CELLS) + " cells a side");
-  const VkDeviceSize heightBytes = VkDeviceSize(hf.h.size()) * sizeof(float);
+  // The heights in the renderer's pages (terrain/page_layout.h): the shader finds a cell's corners
+  // as the rasterizer's sampling function does.
+  pages_ = pageLayout(hf);
+  std::vector<float> paged;  // the one-page case is the host array itself, not copied
+  if (pages_.pageCount() > 1) paged = pagedHeights(hf, pages_);
+  const std::vector<float>& heights = pages_.pageCount() > 1 ? paged : hf.h;
+  const VkDeviceSize heightBytes = VkDeviceSize(heights.size()) * sizeof(float);
   if (heightBytes > ctx.props.limits.maxStorageBufferRange)
     throw FeatureMissing("GPU ray cast: the terrain's " + std::to_string(heightBytes) +
                          " bytes of heights exceed the device's maxStorageBufferRange (" +
@@ -105,7 +114,7 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
   }
   const NormalMap normals = computeNormalMap(hf);
   const MemoryTag measure{GpuResource::Measure};
-  heights_ = createBufferWithData(ctx, hf.h.data(), heightBytes, kStorage, measure);
+  heights_ = createBufferWithData(ctx, heights.data(), heightBytes, kStorage, measure);
   mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage, measure);
   std::vector<uint16_t> allNormals;  // every level, level 0 first; offsets in uints (two halves each)
   for (int k = 0; k < normals.levels(); ++k) {
@@ -142,7 +151,7 @@ void GpuRaycast::run(const CameraPose& pose, int width, int height, const Buffer
   const int grid[4] = {cellsX_, cellsZ_, levels_, distance ? 1 : 0};
   (double_ ? fillParams<double> : fillParams<float>)(params_.mapped, inv, glm::dvec3(cam.eye), cw, ch, width, height,
                                                      grid, samplesX_, samplesZ_, extent_, levelTable_,
-                                                     shadingPixelAngle(cam.proj, height), normalTable_);
+                                                     shadingPixelAngle(cam.proj, height), normalTable_, pages_);
 
   // Set per run: the output buffers are the caller's. The last run has finished (runOneShot waits).
   const VkDescriptorBufferInfo infos[6] = {{heights_.buffer, 0, VK_WHOLE_SIZE},

@@ -12,6 +12,7 @@
 #include "camera/camera_path.h"
 #include "metrics/image_metrics.h"
 #include "render/gpu_profiler.h"
+#include "terrain/page_layout.h"
 #include "vk/resources.h"
 
 namespace lb {
@@ -46,6 +47,7 @@ class GpuRaycast {
   int samplesX_ = 0, samplesZ_ = 0, cellsX_ = 0, cellsZ_ = 0, levels_ = 0;
   float extent_ = 0;
   std::vector<uint32_t> levelTable_;   // per level: offset, width, height, 0
+  PageLayout pages_;                   // how heights_ holds the samples (the renderer's pages)
   std::vector<uint32_t> normalTable_;  // per normal map level: offset (uints), width, height, 0
   Buffer heights_, mip_, normals_, params_, unusedDistance_;
   Bindings bindings_;

@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "render/height_pages.h"
 #include "render/pipeline.h"
 #include "shaders/shared.h"
 #include "vk/context.h"
@@ -11,26 +12,21 @@
 
 namespace lb {
 
-void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, VkImageView height, const Image& output,
-                    const ComputePush& push) {
+void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, const HeightPages& heights,
+                    const Image& output, const ComputePush& push) {
   // Owned by locals: released on return and when any step below throws.
-  Bindings bindings =
-      createBindings(ctx,
-                     {{LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                      {LB_BINDING_SCHEME_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}},
-                     VK_SHADER_STAGE_COMPUTE_BIT, sizeof(ComputePush));
-  VkDescriptorImageInfo hi{sampler, height, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  std::vector<DescriptorBinding> layout = heightBindings(VK_SHADER_STAGE_COMPUTE_BIT);
+  layout.push_back({LB_BINDING_SCHEME_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT});
+  Bindings bindings = createBindings(ctx, layout, VK_SHADER_STAGE_COMPUTE_BIT, sizeof(ComputePush));
+  writeHeightDescriptors(ctx, bindings.set, heights, sampler);
   VkDescriptorImageInfo oi{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  w[0].dstSet = w[1].dstSet = bindings.set;
-  w[0].descriptorCount = w[1].descriptorCount = 1;
-  w[0].dstBinding = LB_BINDING_HEIGHT;
-  w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w[0].pImageInfo = &hi;
-  w[1].dstBinding = LB_BINDING_SCHEME_IMAGE;
-  w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  w[1].pImageInfo = &oi;
-  vkUpdateDescriptorSets(ctx.device, 2, w, 0, nullptr);
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = bindings.set;
+  w.descriptorCount = 1;
+  w.dstBinding = LB_BINDING_SCHEME_IMAGE;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w.pImageInfo = &oi;
+  vkUpdateDescriptorSets(ctx.device, 1, &w, 0, nullptr);
 
   vk::Unique<VkPipeline> pipeline = createComputePipeline(ctx, bindings.pipelineLayout, stem);
 

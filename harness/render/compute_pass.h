@@ -10,12 +10,14 @@ namespace lb {
 
 struct Context;
 struct ComputePush;
+struct HeightPages;
 
 // Runs shaders/<stem>.comp once as output.width x output.height workgroups (one per texel) with
-// the heightfield at LB_BINDING_HEIGHT and `output` as a storage image at LB_BINDING_SCHEME_IMAGE.
+// the heightfield's pages at LB_BINDING_HEIGHT and LB_BINDING_HEIGHT_TABLE (shaders/heights.glsl) and
+// `output` as a storage image at LB_BINDING_SCHEME_IMAGE.
 // `output` needs STORAGE and SAMPLED usage; it is left in SHADER_READ_ONLY_OPTIMAL. Waits for the GPU.
-void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, VkImageView height, const Image& output,
-                    const ComputePush& push);
+void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, const HeightPages& heights,
+                    const Image& output, const ComputePush& push);
 
 // Copies an RGBA32F image in SHADER_READ_ONLY_OPTIMAL (with TRANSFER_SRC usage) to the host,
 // width * height * 4 floats, and leaves it in SHADER_READ_ONLY_OPTIMAL. Set-up and tests only.

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "terrain/page_layout.h"
+
 namespace lb {
 
 // Shaded/Heatmap/Wireframe write RGBA8 (Wireframe: the shaded frame with the tessellation's edges,
@@ -48,6 +50,8 @@ struct RenderSettings {
   // Testing only: shade from the normal map's level 0 at every distance (the sampler's largest level
   // is 0), as before the mip chain; the footprint's level is still computed, and ignored.
   bool testMipZeroShading = false;
+  // Testing only: upload the heights' pages with a planted defect (render/height_pages.h).
+  PageDefect testPageDefect = PageDefect::None;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

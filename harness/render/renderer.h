@@ -12,6 +12,7 @@
 
 #include "render/frame_data.h"
 #include "render/gpu_profiler.h"
+#include "render/height_pages.h"
 #include "render/path_drawer.h"
 #include "render/scheme.h"
 #include "vk/resources.h"
@@ -126,7 +127,8 @@ class Renderer {
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
-  Image color_, errorTarget_, depth_, height_, schemeTex_, normalMap_;
+  Image color_, errorTarget_, depth_, schemeTex_, normalMap_;
+  HeightPages heights_;        // the heightfield's pages and their table (render/height_pages.h)
   int schemeTexChannels_ = 4;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
   SetupCosts setupCosts_;
   Buffer histogram_, readback_, uniforms_;

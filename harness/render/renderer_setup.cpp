@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "render/compute_pass.h"
+#include "render/height_pages.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -66,10 +67,8 @@ void Renderer::createTargets() {
       createBuffer(ctx_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, tag(GpuResource::Capture));
   histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
                             tag(GpuResource::Capture));
-  height_ = createImage(ctx_, uint32_t(terrain_.width), uint32_t(terrain_.height), VK_FORMAT_R32_SFLOAT,
-                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                        tag(GpuResource::Heights));
-  uploadImage(ctx_, height_, terrain_.h.data(), terrain_.h.size() * sizeof(float));
+  // The heights as pages behind their table (one page unless the terrain says "page").
+  heights_ = createHeightPages(ctx_, terrain_, tag(GpuResource::Heights), settings_.testPageDefect);
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
   // Once per terrain; the format is argued in terrain/normal_map.h.
   const auto tNormals = std::chrono::steady_clock::now();
@@ -94,22 +93,21 @@ void Renderer::createTargets() {
 
 void Renderer::createDescriptors() {
   const VkShaderStageFlags all = layoutStages(ctx_);
-  bindings_ =
-      createBindings(ctx_,
-                     {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
-                      {LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
-                      {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
-                      {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                      {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                      {LB_BINDING_MESH_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}},
-                     all, sizeof(DrawPush));
+  std::vector<DescriptorBinding> layout = heightBindings(all);
+  layout.insert(layout.end(),
+                {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
+                 {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
+                 {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                 {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                 {LB_BINDING_MESH_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}});
+  bindings_ = createBindings(ctx_, layout, all, sizeof(DrawPush));
 }
 
 void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
@@ -152,7 +150,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     ComputePush push{};
     push.terrain = glm::vec4(terrain_.extent, float(settings_.grid), terrain_.minHeight, terrain_.maxHeight);
     std::memcpy(push.params, packed.params, sizeof push.params);
-    runComputePass(ctx_, scheme.info().compute, sampler_, height_.view, schemeTex_, push);
+    runComputePass(ctx_, scheme.info().compute, sampler_, heights_, schemeTex_, push);
     schemeTexChannels_ = 4;
   } else {
     SchemeTexture tex = scheme.preprocessGrid(terrain_, params_, settings_.grid);
@@ -172,7 +170,6 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   setupCosts_.preprocessS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tPreprocess).count();
 
   VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
-  VkDescriptorImageInfo hi{sampler_, height_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo ni{linearSampler_, normalMap_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
@@ -189,12 +186,12 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   };
   VkWriteDescriptorSet writes[] = {
       write(LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &ub),
-      write(LB_BINDING_HEIGHT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &hi, nullptr),
       write(LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &si, nullptr),
       write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
       write(LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &ni, nullptr),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
+  writeHeightDescriptors(ctx_, bindings_.set, heights_, sampler_);
   bindPathBuffers();
 }
 

@@ -238,6 +238,7 @@ Heightfield makeHeightfield(const TerrainSpec& spec) {
   auto placed = [&spec](Heightfield hf) {
     hf.originX = spec.originX;
     hf.originZ = spec.originZ;
+    hf.page = spec.page;
     return hf;
   };
   if (spec.type == "procedural") return placed(makeProcedural(spec));

@@ -39,6 +39,9 @@ struct Heightfield {
   // stay terrain-local: subtract the origin first.
   double originX = 0.0, originZ = 0.0;
   TerrainSource source;
+  // Cells a device page holds a side (terrain/page_layout.h, docs/tiled-heightfield.md); 0: one page,
+  // the single image. The same heights either way: it changes where they live, never a result.
+  int page = 0;
 
   float at(int x, int z) const;  // clamped to the border
   // Bilinear height at world (x, z). Must match shaders/common.glsl terrainHeight() exactly:
@@ -66,6 +69,7 @@ struct TerrainSpec {
   int band = 0;             // gdal: raster band, 1-based; 0 = the file's only band
   std::vector<int> window;  // gdal: [x, y, w, h] full-resolution pixels to read; empty = whole raster
   int overview = 0;         // gdal: level k >= 1 (the file's overview k, else 2^k averaging); 0 = full
+  int page = 0;             // "page": cells a device page holds a side (Heightfield::page); 0 = one page
 };
 
 // Largest |height| accepted, in world units after heightScale. Earth's relief spans -11 km to

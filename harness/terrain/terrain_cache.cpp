@@ -8,14 +8,15 @@
 namespace lb {
 namespace {
 
-// Every field that changes the heights, and the file's identity on disk.
+// Every field that changes the heights or their pages, and the file's identity on disk.
 std::string keyOf(const TerrainSpec& s) {
   std::ostringstream k;
   k.precision(17);
   k << s.type << '\n'
     << s.file << '\n'
     << s.size << ' ' << s.seed << ' ' << s.rawWidth << ' ' << s.rawHeight << ' ' << s.extent << ' ' << s.heightScale
-    << ' ' << s.originX << ' ' << s.originZ << ' ' << s.detailToSpacing << ' ' << s.band << ' ' << s.overview;
+    << ' ' << s.originX << ' ' << s.originZ << ' ' << s.detailToSpacing << ' ' << s.band << ' ' << s.overview << ' '
+    << s.page;
   for (int v : s.window) k << ' ' << v;
   if (!s.file.empty()) {
     std::error_code ec;

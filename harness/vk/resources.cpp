@@ -98,6 +98,47 @@ Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImage
   return img;
 }
 
+Image createImageArray(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                       MemoryTag tag) {
+  Image img;
+  VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ii.imageType = VK_IMAGE_TYPE_2D;
+  ii.format = format;
+  ii.extent = {w, h, 1};
+  ii.mipLevels = 1;
+  ii.arrayLayers = layers;
+  ii.samples = VK_SAMPLE_COUNT_1_BIT;
+  ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ii.usage = usage;
+  ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImage image;
+  VK_CHECK(vkCreateImage(ctx.device, &ii, nullptr, &image));
+  img.image = vk::Unique(ctx.device, image);
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device, image, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory memory;
+  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
+  img.memory = vk::Unique(ctx.device, memory);
+  img.charge = MemoryCharge(tag, req.size);
+  VK_CHECK(vkBindImageMemory(ctx.device, image, memory, 0));
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = image;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  vi.format = format;
+  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  VkImageView view;
+  VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
+  img.view = vk::Unique(ctx.device, view);
+  img.format = format;
+  img.width = w;
+  img.height = h;
+  img.layers = layers;
+  return img;
+}
+
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes) {
   uploadImageLevels(ctx, img, {{data, bytes}});
 }
@@ -168,13 +209,13 @@ Bindings createBindings(Context& ctx, const std::vector<DescriptorBinding>& bind
   std::vector<VkDescriptorSetLayoutBinding> b;
   std::vector<VkDescriptorPoolSize> sizes;
   for (const DescriptorBinding& d : bindings) {
-    b.push_back({d.binding, d.type, 1, d.stages, nullptr});
+    b.push_back({d.binding, d.type, d.count, d.stages, nullptr});
     auto same =
         std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& s) { return s.type == d.type; });
     if (same == sizes.end())
-      sizes.push_back({d.type, 1});
+      sizes.push_back({d.type, d.count});
     else
-      ++same->descriptorCount;
+      same->descriptorCount += d.count;
   }
   VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   li.bindingCount = uint32_t(b.size());
@@ -241,7 +282,8 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, 1};  // every level of an image with mips
+  // Every level of an image with mips, every layer of an array (the heightfield's pages).
+  b.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
   VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   di.imageMemoryBarrierCount = 1;
   di.pImageMemoryBarriers = &b;

@@ -32,6 +32,7 @@ struct Image {
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
   uint32_t mipLevels = 1;
+  uint32_t layers = 1;
 };
 
 // hostVisible: HOST_VISIBLE|COHERENT and mapped; otherwise DEVICE_LOCAL. Every helper charges the
@@ -44,6 +45,10 @@ Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, V
 // mipLevels > 1: a full or partial mip chain; the view covers every level.
 Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
                   VkImageAspectFlags aspect, MemoryTag tag = {}, uint32_t mipLevels = 1);
+// A 2D array image of `layers` layers, one level, its view VK_IMAGE_VIEW_TYPE_2D_ARRAY (even of one
+// layer: the heightfield's pages, render/height_pages.h). Left in UNDEFINED layout.
+Image createImageArray(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                       MemoryTag tag = {});
 // Uploads tightly packed texels of level 0 and leaves the image in SHADER_READ_ONLY_OPTIMAL.
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes);
 // Every level's tightly packed texels, level 0 first (level k: max(1, size >> k) a side).
@@ -66,6 +71,7 @@ struct DescriptorBinding {
   uint32_t binding;
   VkDescriptorType type;
   VkShaderStageFlags stages;
+  uint32_t count = 1;  // descriptors of the binding (a descriptor array when more than 1)
 };
 struct Bindings {
   vk::Unique<VkDescriptorSetLayout> setLayout;
