@@ -23,15 +23,19 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "config/config.h"
 #include "gpu_fixture.h"
 #include "metrics/gpu_raycast.h"
 #include "render/renderer.h"
+#include "render/terrain_fit.h"
 #include "schemes/registry.h"
 #include "sha256.h"
+#include "shaders/shared.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 #include "terrain/page_layout.h"
+#include "vk/device_limits.h"
 
 using namespace lb;
 using nlohmann::json;
@@ -222,6 +226,52 @@ TEST_F(TiledHeightfield, PlantedPageDefectsChangeTheImages) {
   }
 }
 
+// The memory account tags every page and the table as heights: at least the pages' bytes.
+TEST_F(TiledHeightfield, PagesAndTableAreChargedAsHeights) {
+  const Heightfield pages = paged(wideTerrain(), kPage);
+  Renderer r(lbtest::gpu(), pages, settings());
+  const PageLayout l = pageLayout(pages);
+  const uint64_t pageBytes = uint64_t(l.pageSamples()) * l.pageCount() * sizeof(float);
+  const uint64_t tableBytes = sizeof(HeightTableHeader) + uint64_t(l.pageCount()) * 4;
+  EXPECT_GE(r.gpuMemory().bytes(GpuResource::Heights), pageBytes + tableBytes);
+  EXPECT_LT(r.gpuMemory().bytes(GpuResource::Heights), 2 * (pageBytes + tableBytes));
+}
+
+// An H100's figures (vk/device_limits.h): maxImageDimension2D 32768, 2048 layers, 4 GiB allocations.
+DeviceLimits h100() {
+  DeviceLimits d;
+  d.name = "h100";
+  d.maxImageDimension2D = 32768;
+  d.maxImageArrayLayers = 2048;
+  d.maxAllocationBytes = 4ull << 30;
+  d.deviceHeapBytes = 80ull << 30;
+  d.stagingHeapBytes = 64ull << 30;
+  return d;
+}
+
+TEST(TiledLimits, PagesAreBoundByMemoryAndArraysNotOneImage) {
+  DeviceLimits d = h100();
+  // One page: the single image's limit, word for word.
+  EXPECT_EQ(tiledLimitProblem(d, 40000, 40000, 0), terrainLimitProblem(d, 40000, 40000));
+  EXPECT_EQ(tiledLimitProblem(d, 32759, 32759, 1023), "");
+  // Past one image's side the normal map, still one image, is the bound, and says so.
+  const std::string side = tiledLimitProblem(d, 65537, 65537, 1023);
+  EXPECT_NE(side.find("normal map"), std::string::npos) << side;
+  // A page larger than an image side.
+  EXPECT_NE(tiledLimitProblem(d, 40001, 3, 40000).find("pages of 40000 cells"), std::string::npos);
+  // Few layers an array: more arrays than the shaders bind.
+  d.maxImageArrayLayers = 4;
+  const std::string arrays = tiledLimitProblem(d, 8193, 8193, 255);  // 32 x 32 pages in 4-layer arrays
+  EXPECT_NE(arrays.find("page arrays"), std::string::npos) << arrays;
+  // A small heap: the pages' bytes count against it.
+  d = h100();
+  d.deviceHeapBytes = 1ull << 30;
+  const std::string heap = tiledLimitProblem(d, 16385, 16385, 1023);
+  EXPECT_NE(heap.find("memory heap (pages"), std::string::npos) << heap;
+  EXPECT_LT(largestSquareTiledTerrain(d, 1023), 16385);
+  EXPECT_GT(largestSquareTiledTerrain(d, 1023), 8192);
+}
+
 namespace {
 
 // A case file without what may differ between two runs of the same frames: times, rates, costs,
@@ -333,7 +383,7 @@ TEST(TiledHeightfieldSweep, CaseFilesAndImagesOfPagedTerrainsEqualTheSingleImage
                   {"repetitions", 1},
                   {"terrain", terrain},
                   {"paths", {"paths/flyover.csv", "paths/dive.csv"}},
-                  {"schemes", "all"},
+                  {"schemes", json::array({"all"})},
                   {"measure", {{"every", 1}}},
                   {"images", {{"frames", {0, 4}}, {"modes", {"shaded", "heatmap", "error"}}, {"worst", false}}}};
       Config c = parseConfig(cfg.dump(), "tiled.json", std::string(LODBENCH_SOURCE_DIR) + "/configs");
@@ -352,4 +402,15 @@ TEST(TiledHeightfieldSweep, CaseFilesAndImagesOfPagedTerrainsEqualTheSingleImage
     }
   }
   fs::remove_all(dir);
+}
+
+// `lodbench devices` states the tiled limit beside the single image's.
+TEST(TiledLimits, DevicesCommandPrintsTheTiledLimit) {
+  const DeviceLimits d = deviceLimits(lbtest::gpu().physicalDevice);
+  const std::string side = std::to_string(largestSquareTiledTerrain(d, 1023));
+  const lb::test::CliOut o = lb::test::lodbench("devices", false);
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("largest terrain in pages of 1023 cells: " + side + " x " + side + " samples"),
+            std::string::npos)
+      << o.text;
 }

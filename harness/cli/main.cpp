@@ -49,6 +49,8 @@ static int listSchemes() {
   return 0;
 }
 
+constexpr int kDevicesPage = 1023;
+
 static int listDevicesCmd() {
   for (auto& d : listDevices()) {
     std::printf("[%d] %s: %s\n", d.index, d.name.c_str(), d.suitable ? "suitable" : d.rejectReason.c_str());
@@ -63,6 +65,12 @@ static int listDevicesCmd() {
         "%s heap %llu MiB)\n",
         side, side, l.maxImageDimension2D, (unsigned long long)(l.maxAllocationBytes >> 20),
         l.sharedHeap ? "one" : "device-local", (unsigned long long)(l.deviceHeapBytes >> 20));
+    // In pages of 1023 cells (4 MiB each, docs/tiled-heightfield.md): the terrain's "page".
+    const int tiled = largestSquareTiledTerrain(l, kDevicesPage);
+    std::printf(
+        "    largest terrain in pages of %d cells: %d x %d samples (maxImageArrayLayers %u; the normal map is "
+        "still one image)\n",
+        kDevicesPage, tiled, tiled, l.maxImageArrayLayers);
     std::printf("    %s\n", meshShaderLine(d.mesh).c_str());
   }
   return 0;

@@ -28,6 +28,7 @@ DeviceLimits deviceLimits(VkPhysicalDevice pd) {
   vkGetPhysicalDeviceProperties2(pd, &p2);
   d.name = p2.properties.deviceName;
   d.maxImageDimension2D = p2.properties.limits.maxImageDimension2D;
+  d.maxImageArrayLayers = p2.properties.limits.maxImageArrayLayers;
   d.maxAllocationBytes = m3.maxMemoryAllocationSize;
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(pd, &mem);

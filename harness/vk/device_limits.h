@@ -15,10 +15,11 @@ namespace lb {
 struct DeviceLimits {
   std::string name;
   uint32_t maxImageDimension2D = 0;
-  uint64_t maxAllocationBytes = 0;  // VkPhysicalDeviceMaintenance3Properties::maxMemoryAllocationSize
-  uint64_t deviceHeapBytes = 0;     // the largest device-local heap
-  uint64_t stagingHeapBytes = 0;    // the heap of host-visible coherent memory (staging buffers)
-  bool sharedHeap = false;          // staging and images come from one heap
+  uint32_t maxImageArrayLayers = 0;  // layers of one 2D array image (a tiled terrain's pages)
+  uint64_t maxAllocationBytes = 0;   // VkPhysicalDeviceMaintenance3Properties::maxMemoryAllocationSize
+  uint64_t deviceHeapBytes = 0;      // the largest device-local heap
+  uint64_t stagingHeapBytes = 0;     // the heap of host-visible coherent memory (staging buffers)
+  bool sharedHeap = false;           // staging and images come from one heap
 };
 
 // Bytes kept back on the device heap for everything that is not the terrain: render targets,
