@@ -17,7 +17,7 @@
 // SchemeCounter, the instanced (Selection, Footprint, InstanceRecord) or GPU-indirect (GpuLod,
 // GpuLodPass, GpuLodBudget) types, a virtual of Scheme or InstancedLod, FrameUniforms or
 // Heightfield. A plugin built against another version is refused at load, naming both.
-#define LODBENCH_PLUGIN_API_VERSION 2
+#define LODBENCH_PLUGIN_API_VERSION 3
 
 namespace lb {
 
