@@ -4,7 +4,9 @@
 // histogram and errors equal, report and compare taking it like any scheme. And a plugin whose
 // shader does not compile fails its own build with the compiler's message, leaving no library.
 // Release pass only (scripts/test.sh): the sanitizer pass loads the same plugin code through
-// test_plugins.cpp, and would pay a second compile of the example for nothing new.
+// test_plugins.cpp, and would pay a second compile of the example for nothing new. A plugin on the
+// mesh path compiles its task and mesh shaders and is skipped with the reason where the device lacks
+// them, as the built-in mesh schemes are.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -77,6 +79,27 @@ TEST_F(PluginInstall, AShaderThatDoesNotCompileFailsThePluginBuildWithTheCompile
   EXPECT_NE(b.text.find("own_sphere.tesc:9: 'undefinedTriangleSize' : undeclared identifier"), std::string::npos)
       << b.text;
   EXPECT_FALSE(fs::exists(build + "/libbroken.so"));
+}
+
+TEST_F(PluginInstall, AMeshPathPluginBuildsItsTaskAndMeshShadersAndLoadsLikeTheBuiltInMeshSchemes) {
+  const std::string build = dir_ + "/mesh-build";
+  CliOut b = buildPlugin(kSrc + "/tests/plugins/mesh-stages", build);
+  ASSERT_EQ(b.code, 0) << b.text;
+  const std::string lib = build + "/libmesh_stages.so";
+  ASSERT_TRUE(fs::exists(lib)) << b.text;
+  nlohmann::json cfg = lb::test::twinConfig(lib);
+  cfg["schemes"] = {"mesh-stages"};
+  cfg["measure"] = {{"every", 1}, {"passes", nlohmann::json::array()}};
+  CliOut run = shell(installed("run " + lb::test::writeConfig(dir_, cfg) + " --out " + dir_ + "/run -q"));
+  ASSERT_EQ(run.code, 0) << run.text;
+  const nlohmann::json c = lb::test::readJson(dir_ + "/run/cases/mesh-stages_proc65s1_flyover_64x36.json");
+  CliOut devices = shell(installed("devices"));
+  if (devices.text.find("mesh shaders: yes") == std::string::npos) {
+    EXPECT_EQ(c["status"], "skipped") << c.dump();
+    EXPECT_NE(c["reason"].get<std::string>().find("lacks VK_EXT_mesh_shader"), std::string::npos) << c["reason"];
+  } else {
+    EXPECT_EQ(c["status"], "ok") << c["reason"];
+  }
 }
 
 }  // namespace
