@@ -21,6 +21,7 @@
 #include <mutex>
 #include <vector>
 
+#include "terrain/parallel_rows.h"
 #include "terrain/void_fill.h"
 #endif
 
@@ -196,9 +197,11 @@ ReadPlan planRead(GDALDatasetH ds, const TerrainSpec& spec) {
   if (p.outW < 2 || p.outH < 2)
     throw InputError(f + ": " + what + " gives " + sizeText(p.outW, p.outH) + " samples; a terrain needs at least 2x2");
   // Before any allocation: a forged header must not make us ask for gigabytes.
-  if (p.outW > kMaxGdalSide || p.outH > kMaxGdalSide)
-    throw InputError(f + ": " + what + " gives " + sizeText(p.outW, p.outH) + " samples, more than " +
-                     str(kMaxGdalSide) + " per side: use 'overview' or 'window' to read less");
+  const int maxSide = spec.page > 0 ? kMaxPagedGdalSide : kMaxGdalSide;
+  if (p.outW > maxSide || p.outH > maxSide)
+    throw InputError(f + ": " + what + " gives " + sizeText(p.outW, p.outH) + " samples, more than " + str(maxSide) +
+                     " per side: use 'overview' or 'window' to read less" +
+                     (spec.page > 0 ? std::string() : ", or give the terrain a 'page'"));
   return p;
 }
 
@@ -253,6 +256,34 @@ float resolveExtent(GDALDatasetH ds, const TerrainSpec& spec, const ReadPlan& p,
   return float(extent);
 }
 
+// A full-resolution read in row bands on every thread (parallel_rows.h), each with its own dataset
+// (a GDAL dataset is not thread-safe): the tiles of a mosaic (a VRT) or of a tiled COG are read at
+// once, with the same values as one call. Resampled reads (overviews) stay one call.
+void readBands(const TerrainSpec& spec, const ReadPlan& p, float* out) {
+  const int bandNo = GDALGetBandNumber(p.band);
+  std::mutex mutex;
+  std::string failure;
+  parallelRows(
+      p.outH,
+      [&](int r0, int r1) {
+        GdalErrors errors;
+        try {
+          Dataset own = openRaster(spec, errors);
+          GDALRasterBandH band = GDALGetRasterBand(own.get(), bandNo);
+          if (band && GDALRasterIO(band, GF_Read, p.x, p.y + r0, p.w, r1 - r0, out + size_t(r0) * size_t(p.outW),
+                                   p.outW, r1 - r0, GDT_Float32, 0, 0) == CE_None)
+            return;
+          std::lock_guard<std::mutex> lock(mutex);
+          failure = spec.file + ": read error (" + errors.text() + ")";
+        } catch (const InputError& e) {
+          std::lock_guard<std::mutex> lock(mutex);
+          failure = e.what();
+        }
+      },
+      256);
+  if (!failure.empty()) throw InputError(failure);
+}
+
 }  // namespace
 
 bool haveGdal() {
@@ -288,9 +319,12 @@ Heightfield loadGdal(const TerrainSpec& spec) {
   GDALRasterIOExtraArg arg;
   INIT_RASTERIO_EXTRA_ARG(arg);
   if (p.average) arg.eResampleAlg = GRIORA_Average;
-  if (GDALRasterIOEx(p.band, GF_Read, p.x, p.y, p.w, p.h, hf.h.data(), p.outW, p.outH, GDT_Float32, 0, 0, &arg) !=
-      CE_None)
+  if (spec.overview == 0 && !p.average) {
+    readBands(spec, p, hf.h.data());
+  } else if (GDALRasterIOEx(p.band, GF_Read, p.x, p.y, p.w, p.h, hf.h.data(), p.outW, p.outH, GDT_Float32, 0, 0,
+                            &arg) != CE_None) {
     throw InputError(spec.file + ": read error (" + errors.text() + ")");
+  }
 
   // Nodata as GDAL converted it to float (a Float64 nodata may not survive the cast unchanged).
   int hasNodata = 0;

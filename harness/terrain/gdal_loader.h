@@ -20,6 +20,9 @@
 namespace lb {
 
 constexpr int kMaxGdalSide = 16385;  // samples per side after window and overview, as for png16
+// The same for a terrain in pages ("page", docs/tiled-heightfield.md): a 1 m DEM of 64 km and more,
+// read tile by tile from a mosaic (a VRT) or a tiled COG.
+constexpr int kMaxPagedGdalSide = 131073;
 
 // False in builds without GDAL.
 bool haveGdal();
