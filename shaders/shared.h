@@ -2,20 +2,20 @@
 #ifndef LODBENCH_SHARED_H
 #define LODBENCH_SHARED_H
 
-#define LB_BINDING_FRAME 0         // FrameUniforms, dynamic uniform buffer
-#define LB_BINDING_HEIGHT 1        // heightfield pages: LB_HEIGHT_ARRAYS R32F 2D array images (heights.glsl)
-#define LB_BINDING_SCHEME_TEX 2    // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
-#define LB_BINDING_PATCH_BOUNDS 3  // per-patch (minHeight, maxHeight) for culling
-#define LB_BINDING_CAPTURE 4       // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
-#define LB_BINDING_SCHEME_BUF 5    // scheme storage buffer (e.g. tile adjacency)
-#define LB_BINDING_HISTOGRAM 7     // triangle-size histogram (measurement pass)
-#define LB_BINDING_SCHEME_IMAGE 6  // compute preprocessing only: the scheme texture as a storage image
-#define LB_BINDING_NORMAL 8        // terrain normal map, RG16F gradients, all mips (terrain/normal_map.h)
-#define LB_BINDING_INSTANCES 9     // instanced-grid path: InstanceRecord per instance (render/instanced.h)
-#define LB_BINDING_MESH 10         // measurement pass: captured triangles of the instanced path (analytic cracks)
-#define LB_BINDING_LOD_STATE 11    // GPU-indirect path: the LOD state the compute passes keep across frames
-#define LB_BINDING_LOD_ARGS 12     // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
-#define LB_BINDING_MESH_TABLE 13   // mesh path: the tessellation patterns' strip table (tess_piece.h)
+#define LB_BINDING_FRAME 0          // FrameUniforms, dynamic uniform buffer
+#define LB_BINDING_HEIGHT 1         // heightfield pages: LB_HEIGHT_ARRAYS R32F 2D array images (heights.glsl)
+#define LB_BINDING_SCHEME_TEX 2     // scheme preprocessing output (density map, plane-fit lookup), RGBA32F
+#define LB_BINDING_PATCH_BOUNDS 3   // per-patch (minHeight, maxHeight) for culling
+#define LB_BINDING_CAPTURE 4        // factor capture: per patch 4 outer + 2 inner levels (measurement passes)
+#define LB_BINDING_SCHEME_BUF 5     // scheme storage buffer (e.g. tile adjacency)
+#define LB_BINDING_HISTOGRAM 7      // triangle-size histogram (measurement pass)
+#define LB_BINDING_SCHEME_IMAGE 6   // compute preprocessing only: the scheme texture as a storage image
+#define LB_BINDING_NORMAL 8         // terrain normal map, RG16F gradients, all mips (terrain/normal_map.h)
+#define LB_BINDING_INSTANCES 9      // instanced-grid path: InstanceRecord per instance (render/instanced.h)
+#define LB_BINDING_MESH 10          // measurement pass: captured triangles of the instanced path (analytic cracks)
+#define LB_BINDING_LOD_STATE 11     // GPU-indirect path: the LOD state the compute passes keep across frames
+#define LB_BINDING_LOD_ARGS 12      // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
+#define LB_BINDING_MESH_TABLE 13    // mesh path: the tessellation patterns' strip table (tess_piece.h)
 #define LB_BINDING_HEIGHT_TABLE 14  // heightfield pages: HeightTableHeader, then one entry per page
 
 // The heightfield's pages (terrain/page_layout.h, docs/tiled-heightfield.md): a descriptor array of
