@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/frame_data.h"
+#include "render/frame_slot.h"
 #include "render/gpu_profiler.h"
 #include "render/height_pages.h"
 #include "render/path_drawer.h"
@@ -34,11 +35,7 @@ class Renderer {
 
   // Builds the scheme's draw path, pipelines and preprocessing; waits for frames in flight first.
   void setScheme(const Scheme& scheme, const ParamValues& params);
-  // Wall seconds of load-time work for run.json costs.terrains: the normal map (in the constructor)
-  // and the last setScheme's preprocessing (CPU, or the compute pass, with the texture's upload).
-  struct SetupCosts {
-    double normalMapS = 0, preprocessS = 0;
-  };
+  using SetupCosts = lb::SetupCosts;  // render/frame_data.h
   const SetupCosts& setupCosts() const { return setupCosts_; }
   // New parameter values without rebuilding the path, pipelines or preprocessing: only for those that
   // reach the shaders through the uniforms alone, maxLevel unchanged (replay/surplus.h's max_error_px).
@@ -59,9 +56,7 @@ class Renderer {
                   FrameResult* result = nullptr);
   // Per patch: outer[4], inner[2] written by the control shader in the last capture frame.
   std::vector<float> capturedLevels();
-  // Which camera's frustum the LOD culls with (FrameUniforms::frustum): Lod (default), or View, which
-  // keeps culling live under a frozen LOD camera so popping (replay/popping.h) sees no culled holes.
-  enum class CullCamera { Lod, View };
+  using CullCamera = lb::CullCamera;  // render/frame_data.h
   void setCullCamera(CullCamera c) { cullCamera_ = c; }
   CullCamera cullCamera() const { return cullCamera_; }
   // RenderSettings::sky for the frames submitted from now on (images for people between measurements).
@@ -93,16 +88,7 @@ class Renderer {
   const GpuMemoryAccount& gpuMemory() const { return memory_; }
 
  private:
-  struct Slot {
-    VkCommandBuffer cmd = VK_NULL_HANDLE;  // released with commandPool_
-    vk::Unique<VkFence> fence;
-    bool busy = false, readback = false;
-    int frame = 0;
-    double cpuMs = 0;
-    double harnessMs = 0;            // host time spent in submitFrame (uniforms, recording, submit)
-    double prepareMs = 0;            // host time of the path's prepare() (the instanced path's selection)
-    const Buffer* target = nullptr;  // renderInto's destination of the readback copy (null: readback_)
-  };
+  using Slot = FrameSlot;  // render/frame_slot.h
   static constexpr int kSlots = 2;
 
   void createTargets();
