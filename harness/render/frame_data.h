@@ -80,10 +80,11 @@ struct FrameResult {
   uint32_t draws = 0;      // draw calls of the terrain
 };
 
-// Wall seconds of a renderer's load-time work for run.json costs.terrains: the normal map (in its
-// constructor) and the last setScheme's preprocessing (CPU, or the compute pass, with the upload).
+// Wall seconds of a renderer's load-time work for run.json costs.terrains: the heights cut into
+// pages and uploaded, the normal map (both in its constructor) and the last setScheme's
+// preprocessing (CPU, or the compute pass, with the upload).
 struct SetupCosts {
-  double normalMapS = 0, preprocessS = 0;
+  double pagesS = 0, normalMapS = 0, preprocessS = 0;
 };
 
 // Which camera's frustum the LOD culls with (FrameUniforms::frustum): Lod (default), or View, which

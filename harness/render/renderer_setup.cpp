@@ -68,7 +68,9 @@ void Renderer::createTargets() {
   histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
                             tag(GpuResource::Capture));
   // The heights as pages behind their table (one page unless the terrain says "page").
+  const auto tPages = std::chrono::steady_clock::now();
   heights_ = createHeightPages(ctx_, terrain_, tag(GpuResource::Heights), settings_.testPageDefect);
+  setupCosts_.pagesS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tPages).count();
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
   // Once per terrain; the format is argued in terrain/normal_map.h.
   const auto tNormals = std::chrono::steady_clock::now();

@@ -60,7 +60,7 @@ static std::string referenceKey(const Case& c) {
 // Load-time stage costs per terrain label (run.json costs.terrains), from this invocation's cases:
 // the latest case's figures, since every case loads its terrain and builds its renderer anew.
 struct TerrainStageCosts {
-  double loadS = -1, normalMapS = -1;
+  double loadS = -1, pagesS = -1, normalMapS = -1;
   std::map<std::string, double> preprocessS;  // by scheme
 };
 static std::map<std::string, TerrainStageCosts> gStageCosts;
@@ -72,6 +72,7 @@ void clearStageCosts() {
 static void recordStageCosts(const Case& c, double loadS, const Renderer::SetupCosts& setup) {
   TerrainStageCosts& t = gStageCosts[c.terrainLabel];
   t.loadS = loadS;
+  t.pagesS = setup.pagesS;
   t.normalMapS = setup.normalMapS;
   t.preprocessS[c.scheme] = setup.preprocessS;
 }
@@ -79,7 +80,8 @@ static void recordStageCosts(const Case& c, double loadS, const Renderer::SetupC
 json stageCostsJson() {
   json out = json::object();
   for (const auto& [label, t] : gStageCosts)
-    out[label] = {{"load_s", t.loadS}, {"normal_map_s", t.normalMapS}, {"preprocess_s", t.preprocessS}};
+    out[label] = {
+        {"load_s", t.loadS}, {"pages_s", t.pagesS}, {"normal_map_s", t.normalMapS}, {"preprocess_s", t.preprocessS}};
   return out;
 }
 
