@@ -11,6 +11,8 @@
 #include "compare/significance.h"
 #include "compare/verdict.h"
 #include "error.h"
+#include "render/scheme.h"
+#include "schemes/registry.h"
 #include "synthetic_run.h"
 
 namespace lb {
@@ -423,9 +425,10 @@ TEST(CompareCli, ExitCodesAndVerdictFiles) {
   for (const char* sub : {"compare", "ab", "gbench"}) EXPECT_EQ(runCli(std::string(sub) + " --help").code, 0) << sub;
 }
 
-// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap, chunked) and GPU-indirect ones (cbt, cbt-ts)
-// beside tessellated ones: compare shows their LOD/draw split (medians of both sides, not judged)
-// and gives tessellated cases none.
+// The CI baseline holds instanced cases (cdlod, cdlod-sse, clipmap, chunked, clusters) and
+// GPU-indirect ones (cbt, cbt-ts) beside tessellated ones: compare shows their LOD/draw split
+// (medians of both sides, not judged) and gives tessellated cases none. Each case's path is its
+// scheme's, from the registry, so a scheme added to the baseline needs no edit here.
 TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
   const std::string base = std::string(LODBENCH_SOURCE_DIR) + "/results/baseline/ci/";
   CompareReport r = compareRuns(loadRun(base + "r1"), loadRun(base + "r2"), CompareOptions{});
@@ -436,9 +439,10 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
       EXPECT_TRUE(c.split.empty()) << c.id;
       continue;
     }
-    const bool isInstanced =
-        c.id.rfind("cdlod", 0) == 0 || c.id.rfind("clipmap", 0) == 0 || c.id.rfind("chunked", 0) == 0;
-    if (c.id.rfind("cbt", 0) == 0) {  // GPU-indirect: the compute passes and the draw, no CPU selection
+    const Scheme* scheme = findScheme(c.id.substr(0, c.id.find('_')));
+    ASSERT_NE(scheme, nullptr) << c.id;
+    const DrawPath path = scheme->info().path;
+    if (path == DrawPath::GpuIndirect) {  // the compute passes and the draw, no CPU selection
       ++indirect;
       ASSERT_EQ(c.split.size(), 2u) << c.id;
       EXPECT_EQ(c.split[0].key, "lod_ms");
@@ -446,7 +450,7 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
       EXPECT_GT(c.split[0].baseline, 0.0) << c.id;
       continue;
     }
-    if (!isInstanced) {
+    if (path != DrawPath::InstancedGrid) {
       EXPECT_TRUE(c.split.empty()) << c.id;
       continue;
     }
@@ -456,8 +460,8 @@ TEST(Compare, ShowsTheLodAndDrawSplitOfInstancedCases) {
     EXPECT_EQ(c.split[2].key, "lod_cpu_ms");
     EXPECT_GT(c.split[2].baseline, 0.0) << c.id;
   }
-  EXPECT_EQ(instanced, 4);  // cdlod, cdlod-sse, clipmap, chunked
-  EXPECT_EQ(indirect, 2);
+  EXPECT_GE(instanced, 5);  // cdlod, cdlod-sse, clipmap, chunked, clusters
+  EXPECT_GE(indirect, 2);   // cbt, cbt-ts
   EXPECT_NE(verdictMarkdown(r).find("## LOD and draw"), std::string::npos);
   EXPECT_TRUE(verdictJson(r)["cases"][0].is_object());
 }
