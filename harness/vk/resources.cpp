@@ -57,55 +57,19 @@ Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, V
   return b;
 }
 
-Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, MemoryTag tag, uint32_t mipLevels) {
+namespace {
+
+// A device-local 2D image of `layers` layers and `mipLevels` levels with one view over all of them:
+// the one creation path of createImage and createImageArray.
+Image createImageLayers(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, uint32_t mipLevels,
+                        VkImageViewType viewType, VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
+                        MemoryTag tag) {
   Image img;
   VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   ii.imageType = VK_IMAGE_TYPE_2D;
   ii.format = format;
   ii.extent = {w, h, 1};
   ii.mipLevels = mipLevels;
-  ii.arrayLayers = 1;
-  ii.samples = VK_SAMPLE_COUNT_1_BIT;
-  ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ii.usage = usage;
-  ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkImage image;
-  VK_CHECK(vkCreateImage(ctx.device, &ii, nullptr, &image));
-  img.image = vk::Unique(ctx.device, image);
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device, image, &req);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory memory;
-  VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
-  img.memory = vk::Unique(ctx.device, memory);
-  img.charge = MemoryCharge(tag, req.size);
-  VK_CHECK(vkBindImageMemory(ctx.device, image, memory, 0));
-  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vi.image = image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = format;
-  vi.subresourceRange = {aspect, 0, mipLevels, 0, 1};
-  VkImageView view;
-  VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
-  img.view = vk::Unique(ctx.device, view);
-  img.format = format;
-  img.width = w;
-  img.height = h;
-  img.mipLevels = mipLevels;
-  return img;
-}
-
-Image createImageArray(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                       MemoryTag tag) {
-  Image img;
-  VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ii.imageType = VK_IMAGE_TYPE_2D;
-  ii.format = format;
-  ii.extent = {w, h, 1};
-  ii.mipLevels = 1;
   ii.arrayLayers = layers;
   ii.samples = VK_SAMPLE_COUNT_1_BIT;
   ii.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -126,17 +90,31 @@ Image createImageArray(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, Vk
   VK_CHECK(vkBindImageMemory(ctx.device, image, memory, 0));
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  vi.viewType = viewType;
   vi.format = format;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  vi.subresourceRange = {aspect, 0, mipLevels, 0, layers};
   VkImageView view;
   VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
   img.view = vk::Unique(ctx.device, view);
   img.format = format;
   img.width = w;
   img.height = h;
+  img.mipLevels = mipLevels;
   img.layers = layers;
   return img;
+}
+
+}  // namespace
+
+Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect, MemoryTag tag, uint32_t mipLevels) {
+  return createImageLayers(ctx, w, h, 1, mipLevels, VK_IMAGE_VIEW_TYPE_2D, format, usage, aspect, tag);
+}
+
+Image createImageArray(Context& ctx, uint32_t w, uint32_t h, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                       MemoryTag tag) {
+  return createImageLayers(ctx, w, h, layers, 1, VK_IMAGE_VIEW_TYPE_2D_ARRAY, format, usage, VK_IMAGE_ASPECT_COLOR_BIT,
+                           tag);
 }
 
 void uploadImage(Context& ctx, const Image& img, const void* data, VkDeviceSize bytes) {
