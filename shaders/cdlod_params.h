@@ -21,6 +21,12 @@
 #define LB_CDLOD_SIDE_SHIFT 32.0
 
 // cdlod-ms (schemes/cdlod_ms.cpp): a quadrant's grid in mesh workgroups of at most this many cells
-// a side: 81 vertices and 128 triangles, within every device's 256 and 256.
-#define LB_CDLOD_MS_BLOCK 8
+// along x and along z (powers of two, so a quadrant's side, itself one, splits into whole blocks):
+// 8 x 8 is 81 vertices and 128 triangles, within every device's 256 and 256.
+#ifndef LB_CDLOD_MS_BLOCK_X
+#define LB_CDLOD_MS_BLOCK_X 8
+#endif
+#ifndef LB_CDLOD_MS_BLOCK_Z
+#define LB_CDLOD_MS_BLOCK_Z 8
+#endif
 #endif

@@ -47,7 +47,9 @@
 // Mesh path: the records (patches, selected nodes) one task workgroup reads, one an invocation;
 // the NVIDIA H100's preferred task and mesh workgroup size (maxPreferred*WorkGroupInvocations).
 #define LB_MESH_TASK_RECORDS 32
+#ifndef LB_MESH_THREADS
 #define LB_MESH_THREADS 32
+#endif
 
 // Push-constant blocks must fit the smallest maxPushConstantsSize Vulkan guarantees.
 #define LB_PUSH_CONSTANT_LIMIT 128
