@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "camera/camera_matrices.h"
 #include "gpu_fixture.h"
@@ -150,21 +151,29 @@ std::vector<uint8_t> overMask(const RgbaImage& a, const RgbaImage& b, int thresh
 
 class GroundTruth : public lbtest::GpuTest {};
 
-// quick.json's set-up (320x180, grid 32, 30 fps, every 40th frame measured) on each shipped path
-// (one test per path, so ctest -j runs them side by side: the reference renders are slow on lavapipe).
+// 320x180 on a grid of 32 (level 64: 8.4M triangles, 3 to 10 s a frame on lavapipe) at 30 fps,
+// on each shipped path (one test per path, so ctest -j runs them side by side). A frame every
+// 4 s from the first and the path's last frame: 5 or 6 a path, spread from end to end so the
+// climbs, low passes and horizon sweeps are all in, where every 40th frame (13 to 16 a path)
+// took 370 test-seconds in CI's Release pass. Every frame checked is within 40 dB (the worst
+// seen over every 40th frame: 47 dB, the flyover's frame 80).
 class GroundTruthPaths : public lbtest::GpuTest, public ::testing::WithParamInterface<const char*> {};
 
-TEST_P(GroundTruthPaths, ReferenceSchemeIsWithin40DbOfTheRayCastOnEveryMeasuredFrame) {
+TEST_P(GroundTruthPaths, ReferenceSchemeIsWithin40DbOfTheRayCastEveryFourSecondsAndOnTheLastFrame) {
   const Heightfield hf = quickTerrain();
-  const int w = 320, h = 180, every = 40;
+  const int w = 320, h = 180, fps = 30, every = 4 * fps;
   Renderer r(lbtest::gpu(), hf, {w, h, 32});
   r.setScheme(*findScheme("reference"), {});
   const char* name = GetParam();
   CameraPath path = loadCameraPath(std::string(LODBENCH_SOURCE_DIR) + "/configs/paths/" + name + ".csv");
+  const int last = frameCount(path, fps) - 1;
+  std::vector<int> frames;
+  for (int f = 0; f < last; f += every) frames.push_back(f);
+  frames.push_back(last);
   double worst = 1e9, sum = 0, worstFrac = 0;
   int n = 0, worstFrame = -1;
-  for (int f = 0; f < frameCount(path, 30); f += every) {
-    CameraPose pose = samplePose(path, 30, f, hf);
+  for (int f : frames) {
+    CameraPose pose = samplePose(path, fps, f, hf);
     RgbaImage tess{w, h, r.renderImage(pose, pose, RenderMode::Shaded)};
     RgbaImage truth = raycastImage(hf, pose, w, h);
     ImageError e = compareImages(tess, truth, 16);
@@ -174,11 +183,11 @@ TEST_P(GroundTruthPaths, ReferenceSchemeIsWithin40DbOfTheRayCastOnEveryMeasuredF
     sum += e.psnrDb;
     ++n;
   }
-  EXPECT_GT(n, 10);
+  EXPECT_GE(n, 5) << "the shipped paths last 16 s or more";
   std::printf(
-      "[ground truth] %s: %d frames, reference vs ray cast PSNR mean %.1f dB, worst %.1f dB (frame %d), "
-      "largest fraction over 16: %.5f\n",
-      name, n, sum / n, worst, worstFrame, worstFrac);
+      "[ground truth] %s: frames 0 to %d every %d and the last, %d frames, reference vs ray cast PSNR mean %.1f dB, "
+      "worst %.1f dB (frame %d), largest fraction over 16: %.5f\n",
+      name, last, every, n, sum / n, worst, worstFrame, worstFrac);
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedPaths, GroundTruthPaths, ::testing::Values("flyover", "lowalt", "horizon"));
