@@ -109,12 +109,14 @@ TEST(InstancedSchemes, NoCracksInEveryScenario) {
 // of the metric, reported in docs/draw-paths.md, not asserted either way.
 TEST(InstancedSchemes, WithoutTheMorphCdlodCracksAndPopsMore) {
   // cdlod-sse at 4 px: at 1 px this terrain is drawn almost all at the finest level, with no
-  // transitions to crack or pop. 30 fps: popping compares consecutive frames, and the morph is meant
-  // to spread a level change over frames that close together.
+  // transitions to crack or pop. 30 fps: popping compares a frame with the one before it (whichever
+  // frames are measured), and the morph is meant to spread a level change over frames that close
+  // together. Every 8th frame measured (68 of lowalt's 541): cdlod's worst pops with and without the
+  // morph are the same as over every 2nd, at a third of the time (40 s against 105 s in Release).
   json schemes = json::array({{{"name", "cdlod"}, {"params", {{"morph_on", {0, 1}}}}},
                               {{"name", "cdlod-sse"}, {"params", {{"morph_on", {0, 1}}, {"max_error_px", 4}}}}});
   json cfg =
-      smallRun("instanced-morph", {"paths/lowalt.csv"}, schemes, {{"every", 2}, {"passes", {"cracks", "popping"}}});
+      smallRun("instanced-morph", {"paths/lowalt.csv"}, schemes, {{"every", 8}, {"passes", {"cracks", "popping"}}});
   cfg["resolution"] = {320, 180};
   cfg["fps"] = 30;
   std::map<std::string, json> byId;
