@@ -3,7 +3,7 @@
 // against mesh shading at one LOD decision. The selection is cdlod's own object (its parameters,
 // node sizes, ranges and morph constants), its records the instance records the instanced path
 // would draw; the task shader (shaders/cdlod_ms.task) reads one selected quadrant an invocation and
-// the mesh shader (shaders/cdlod_ms.mesh) emits its grid in blocks of at most 8 x 8 cells, each
+// the mesh shader (shaders/cdlod_ms.mesh) emits its grid in blocks of at most 16 x 8 cells, each
 // vertex placed and morphed by cdlod's vertex function (shaders/cdlod_vertex.glsl), each cell cut
 // along the footprint's diagonal: the same triangles, the same points. cdlod's seam check
 // (cdlod_seam_risk) counts the selection both draw; it stays cdlod's (a counter names one scheme).

@@ -21,10 +21,12 @@
 #define LB_CDLOD_SIDE_SHIFT 32.0
 
 // cdlod-ms (schemes/cdlod_ms.cpp): a quadrant's grid in mesh workgroups of at most this many cells
-// along x and along z (powers of two, so a quadrant's side, itself one, splits into whole blocks):
-// 8 x 8 is 81 vertices and 128 triangles, within every device's 256 and 256.
+// along x and along z (powers of two, so a quadrant's side, itself one, splits into whole blocks).
+// 16 x 8 is 153 vertices and 256 triangles, the most VK_EXT_mesh_shader guarantees: measured on
+// the H200, a frame's mesh time grows with the mesh invocations it launches, so the largest block
+// is the fastest (8 x 8: 1.8x its time, 8 x 4: 3.5x; results/published/nvidia-h200/mesh/README.md).
 #ifndef LB_CDLOD_MS_BLOCK_X
-#define LB_CDLOD_MS_BLOCK_X 8
+#define LB_CDLOD_MS_BLOCK_X 16
 #endif
 #ifndef LB_CDLOD_MS_BLOCK_Z
 #define LB_CDLOD_MS_BLOCK_Z 8
