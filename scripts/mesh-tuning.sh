@@ -3,7 +3,8 @@
 # build run with SPIR-V compiled under other defines (LODBENCH_SHADER_DIR), so no rebuild. The
 # twins (sphere integer 1, cdlod, cbt) run once, then the mesh schemes once per variant, at equal
 # LOD on the SRTM tile's ground, grazing-flight and flyover views (configs under
-# results/published/nvidia-h200/mesh/tuning/). scripts/mesh-tuning-table.py tabulates OUT.
+# results/published/nvidia-h200/mesh/tuning/, which read the SRTM tile from .data/N44W072.hgt: a
+# file a clone lacks, put there or named in the configs). scripts/mesh-tuning-table.py tabulates OUT.
 # Usage: scripts/mesh-tuning.sh compile OUT          (here: SPIR-V per variant into OUT/v/<name>)
 #        scripts/mesh-tuning.sh run OUT BUILD GPU     (on the device: OUT/<variant>/summary.json)
 # Variants: name=defines, from LODBENCH_MESH_VARIANTS (default below; shaders/shared.h,
