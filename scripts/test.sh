@@ -19,7 +19,8 @@ release=()
 (cd build && ctest --output-on-failure -j 2 "${release[@]}")
 if [[ ${LODBENCH_SKIP_SANITIZE:-0} != 1 ]]; then
   t=$(date +%s)
-  # -O1 -g1: compiles faster than RelWithDebInfo's -O2 -g and keeps file:line in reports; the
+  # -O1 -g1: compiles faster than RelWithDebInfo's -O2 -g and keeps file:line in reports (the test
+  # files at -O0 with a precompiled header: CMakeLists.txt, LODBENCH_SANITIZE_FAST_TESTS); the
   # microbenchmarks and the timing tests are not built (nothing of theirs runs here).
   label=(-LE heavy)
   [[ ${LODBENCH_SANITIZE_ALL:-0} == 1 ]] && label=()
