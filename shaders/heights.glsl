@@ -8,6 +8,7 @@
 #include "shared.h"
 
 layout(set = 0, binding = LB_BINDING_HEIGHT) uniform sampler2DArray heightPages[LB_HEIGHT_ARRAYS];
+layout(constant_id = LB_SPEC_HEIGHT_ARRAYS) const int kHeightArrays = LB_HEIGHT_ARRAYS;
 layout(std430, set = 0, binding = LB_BINDING_HEIGHT_TABLE) readonly buffer HeightTable {
   ivec4 samples;  // xy: the terrain's samples; zw: cells a page holds
   ivec4 pages;    // xy: pages along x and z
@@ -39,6 +40,7 @@ ivec3 pageTexel(ivec2 s, out int array) {
 float heightAt(ivec2 s) {
   int array;
   const ivec3 p = pageTexel(s, array);
+  if (kHeightArrays == 1) return LB_PAGE_FETCH(0);
   switch (array) {
     case 1: return LB_PAGE_FETCH(1);
     case 2: return LB_PAGE_FETCH(2);
@@ -55,6 +57,7 @@ float heightAt(ivec2 s) {
 vec4 cellCorners(ivec2 i0) {
   int array;
   const ivec3 p = pageTexel(i0, array);
+  if (kHeightArrays == 1) return LB_PAGE_QUAD(0);
   switch (array) {
     case 1: return LB_PAGE_QUAD(1);
     case 2: return LB_PAGE_QUAD(2);

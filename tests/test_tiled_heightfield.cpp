@@ -193,6 +193,23 @@ TEST_F(TiledHeightfield, OneSchemeOfEachDrawPathDrawsThePagedTerrainAsTheSingleI
   expectPagedDrawsEqual({"uniform", "planefit", "cdlod", "cbt"});
 }
 
+// Pages spread over several page arrays (at most 64 pages an array: 234 pages in 4 arrays, as
+// only terrains past the device's layers fill otherwise) draw as one array does: the shaders then
+// choose each page's array, where one array lets them read it directly.
+TEST_F(TiledHeightfield, PagesInSeveralArraysDrawAsInOne) {
+  const Heightfield pages = paged(wideTerrain(), kPage);
+  EXPECT_EQ(createHeightPages(lbtest::gpu(), pages, {}, PageDefect::None, 64).arrays.size(), 4u);
+  RenderSettings several = settings();
+  several.testPageLayers = 64;
+  Renderer a(lbtest::gpu(), pages, settings()), b(lbtest::gpu(), pages, several);
+  for (const char* name : {"uniform", "planefit", "cdlod", "cbt"}) {
+    const Scheme& s = *findScheme(name);
+    a.setScheme(s, {});
+    b.setScheme(s, {});
+    EXPECT_TRUE(outputs(a, poses()[0]) == outputs(b, poses()[0])) << name;
+  }
+}
+
 // The GPU ray cast reads the heights in the same pages: the same hits, distances and colours.
 TEST_F(TiledHeightfield, GpuRayCastOfThePagedTerrainIsTheSingleImages) {
   const Heightfield& single = wideTerrain();

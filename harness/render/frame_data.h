@@ -52,6 +52,9 @@ struct RenderSettings {
   bool testMipZeroShading = false;
   // Testing only: upload the heights' pages with a planted defect (render/height_pages.h).
   PageDefect testPageDefect = PageDefect::None;
+  // Testing only: at most this many pages a page array (0: as many as the device allows), so a
+  // small terrain fills several arrays as only the largest do otherwise.
+  uint32_t testPageLayers = 0;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

@@ -36,14 +36,15 @@ uint32_t pageLayersPerArray(uint32_t maxImageArrayLayers, uint64_t maxAllocation
   return uint32_t(std::max<uint64_t>(layers, 1));
 }
 
-HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect) {
+HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect,
+                              uint32_t maxLayers) {
   HeightPages out;
   const PageLayout l = pageLayout(hf);
   out.layout = l;
   const uint64_t pageBytes = uint64_t(l.pageSamples()) * sizeof(float);
   const DeviceLimits limits = deviceLimits(ctx.physicalDevice);
-  const uint32_t perArray =
-      pageLayersPerArray(ctx.props.limits.maxImageArrayLayers, limits.maxAllocationBytes, pageBytes);
+  uint32_t perArray = pageLayersPerArray(ctx.props.limits.maxImageArrayLayers, limits.maxAllocationBytes, pageBytes);
+  if (maxLayers > 0) perArray = std::min(perArray, maxLayers);
   const int pages = l.pageCount();
   const int arrays = int((uint32_t(pages) + perArray - 1) / perArray);
   if (arrays > LB_HEIGHT_ARRAYS)

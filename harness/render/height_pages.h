@@ -20,8 +20,10 @@ struct HeightPages {
 
 // Cuts hf into pageLayout(hf) and uploads every page, charged to `tag` (the heights). Pages fill
 // arrays of at most min(maxImageArrayLayers, 2048) layers and most of maxMemoryAllocationSize;
-// throws FeatureMissing when more than LB_HEIGHT_ARRAYS arrays would be needed.
-HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect = PageDefect::None);
+// throws FeatureMissing when more than LB_HEIGHT_ARRAYS arrays would be needed. `maxLayers` > 0
+// caps the layers an array holds (testing only: RenderSettings::testPageLayers).
+HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect = PageDefect::None,
+                              uint32_t maxLayers = 0);
 // How many page layers one array of this device takes for pages of `pageBytes` bytes.
 uint32_t pageLayersPerArray(uint32_t maxImageArrayLayers, uint64_t maxAllocationBytes, uint64_t pageBytes);
 

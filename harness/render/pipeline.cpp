@@ -1,5 +1,8 @@
 #include "render/pipeline.h"
 
+#include <cstring>
+
+#include "shaders/shared.h"
 #include "vk/context.h"
 #include "vk/resources.h"
 #include "vk/vk_check.h"
@@ -9,13 +12,34 @@ namespace lb {
 vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& desc) {
   std::vector<vk::Unique<VkShaderModule>> modules;
   std::vector<VkPipelineShaderStageCreateInfo> stages;
-  for (const ShaderStage& s : desc.stages) {
+  // Each stage's own constants, then the height arrays' (a constant a stage does not declare is
+  // ignored): sized up front, so the pointers into them hold until the pipeline is made.
+  std::vector<std::vector<VkSpecializationMapEntry>> entries(desc.stages.size());
+  std::vector<std::vector<uint8_t>> data(desc.stages.size());
+  std::vector<VkSpecializationInfo> specs(desc.stages.size());
+  for (size_t i = 0; i < desc.stages.size(); ++i) {
+    const ShaderStage& s = desc.stages[i];
     modules.push_back(loadShaderModule(ctx, s.spirv));
     VkPipelineShaderStageCreateInfo st{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     st.stage = s.stage;
     st.module = modules.back();
     st.pName = "main";
     st.pSpecializationInfo = s.specialization;
+    if (desc.heightArrays > 0) {
+      const VkSpecializationInfo* own = s.specialization;
+      if (own) {
+        entries[i].assign(own->pMapEntries, own->pMapEntries + own->mapEntryCount);
+        data[i].assign(static_cast<const uint8_t*>(own->pData),
+                       static_cast<const uint8_t*>(own->pData) + own->dataSize);
+      }
+      data[i].resize((data[i].size() + 3) / 4 * 4);
+      entries[i].push_back({LB_SPEC_HEIGHT_ARRAYS, uint32_t(data[i].size()), sizeof(int32_t)});
+      const int32_t arrays = int32_t(desc.heightArrays);
+      data[i].resize(data[i].size() + sizeof arrays);
+      std::memcpy(data[i].data() + data[i].size() - sizeof arrays, &arrays, sizeof arrays);
+      specs[i] = {uint32_t(entries[i].size()), entries[i].data(), data[i].size(), data[i].data()};
+      st.pSpecializationInfo = &specs[i];
+    }
     stages.push_back(st);
   }
   // A mesh pipeline reads no vertices: no vertex input or input assembly state.

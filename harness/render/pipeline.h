@@ -45,6 +45,10 @@ struct TessPipelineDesc {
                                             VK_BLEND_OP_ADD,
                                             0xf};
   std::array<float, 4> blendConstants{};
+  // The page arrays the terrain's heights fill (render/height_pages.h), given to every stage as
+  // specialization constant LB_SPEC_HEIGHT_ARRAYS; 0: not given (the shaders read as though all
+  // arrays were filled, which is right for any terrain, only slower on some drivers).
+  uint32_t heightArrays = 0;
 };
 
 // Loads the stages' modules, builds the pipeline and releases the modules (also when it throws).

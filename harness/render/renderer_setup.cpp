@@ -69,7 +69,8 @@ void Renderer::createTargets() {
                             tag(GpuResource::Capture));
   // The heights as pages behind their table (one page unless the terrain says "page").
   const auto tPages = std::chrono::steady_clock::now();
-  heights_ = createHeightPages(ctx_, terrain_, tag(GpuResource::Heights), settings_.testPageDefect);
+  heights_ =
+      createHeightPages(ctx_, terrain_, tag(GpuResource::Heights), settings_.testPageDefect, settings_.testPageLayers);
   setupCosts_.pagesS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tPages).count();
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
   // Once per terrain; the format is argued in terrain/normal_map.h.
@@ -298,6 +299,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   if (histogram && !meshStages)
     d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", g.meshCapture ? &meshSpec : nullptr});
   d.controlPoints = g.controlPoints;
+  d.heightArrays = uint32_t(heights_.arrays.size());
   d.width = uint32_t(settings_.width);
   d.height = uint32_t(settings_.height);
   d.polygonMode = wire ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
