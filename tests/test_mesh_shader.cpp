@@ -144,8 +144,15 @@ TEST_F(MeshShader, TwinsDrawTheirTwinsTrianglesWithoutCracksInEveryMode) {
   // cbt at subd 5: a leaf's 1,024 triangles are more than a mesh workgroup emits, so cbt-ms cuts
   // each leaf into parts (shaders/cbt_meshlets.glsl); the default subd 3 sends whole leaves.
   const json subd5 = {{"subd", 5}};
-  json schemes = json::array({"cdlod", "cdlod-ms", "cbt", "cbt-ms", {{"name", "cbt"}, {"params", subd5}},
-                              {{"name", "cbt-ms"}, {"params", subd5}}, "sphere-ms", "clusters", "clusters-ms"});
+  json schemes = json::array({"cdlod",
+                              "cdlod-ms",
+                              "cbt",
+                              "cbt-ms",
+                              {{"name", "cbt"}, {"params", subd5}},
+                              {{"name", "cbt-ms"}, {"params", subd5}},
+                              "sphere-ms",
+                              "clusters",
+                              "clusters-ms"});
   const json cfg = {{"name", "mesh-check"},
                     {"resolution", {320, 180}},
                     {"grid", 16},
