@@ -1,6 +1,7 @@
 // A matched case's search kept for a later invocation of the same run (replay/case_search.h): a
 // sweep stopped by a deadline resumes without searching its unfinished cases again.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -32,8 +33,9 @@ Config searchConfig() {
                      "search.json", kConfigs);
 }
 
+// Per process: ctest runs these tests in parallel processes, each making its own first run.
 fs::path fresh(const std::string& name) {
-  fs::path d = fs::path(::testing::TempDir()) / name;
+  fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(getpid()));
   fs::remove_all(d);
   return d;
 }
