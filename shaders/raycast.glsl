@@ -211,48 +211,24 @@ bool castRay(out real3 pos) {
   return false;
 }
 
-vec2 mixF(vec2 a, vec2 b, float w) {
-  precise vec2 r = a * (1.0 - w) + b * w;  // glm::mix
-  return r;
+// The normal map's texels for normal_sample.glsl: level after level in normals[], two halves a uint.
+ivec2 nsLevelSize(int k) { return ivec2(normalLevels[k].yz); }
+void nsQuad(int k, ivec2 a, ivec2 b, out vec2 g00, out vec2 g10, out vec2 g01, out vec2 g11) {
+  const uint o = normalLevels[k].x, w = normalLevels[k].y;
+  g00 = unpackHalf2x16(normals[o + uint(a.y) * w + uint(a.x)]);
+  g10 = unpackHalf2x16(normals[o + uint(a.y) * w + uint(b.x)]);
+  g01 = unpackHalf2x16(normals[o + uint(b.y) * w + uint(a.x)]);
+  g11 = unpackHalf2x16(normals[o + uint(b.y) * w + uint(b.x)]);
 }
+#define LB_NS_DIV(a, b) divF(a, b)
+#define LB_NS_SQRT(a) sqrtF(a)
+#include "normal_sample.glsl"
 
-// sampleNormalMap (terrain/normal_map.cpp) at one level: texel coordinate u, clamped to the edge.
-vec2 bilinear(int k, vec2 u) {
-  const uvec4 lv = normalLevels[k];
-  const ivec2 n = ivec2(lv.yz);
-  const vec2 fl = floor(u);
-  precise vec2 f = u - fl;
-  const ivec2 i0 = ivec2(fl);
-  const ivec2 a = clamp(i0, ivec2(0), n - 1), b = clamp(i0 + 1, ivec2(0), n - 1);
-  const uint o = lv.x;
-  const vec2 g00 = unpackHalf2x16(normals[o + a.y * n.x + a.x]), g10 = unpackHalf2x16(normals[o + a.y * n.x + b.x]);
-  const vec2 g01 = unpackHalf2x16(normals[o + b.y * n.x + a.x]), g11 = unpackHalf2x16(normals[o + b.y * n.x + b.x]);
-  precise vec2 s = mixF(mixF(g00, g10, f.x), mixF(g01, g11, f.x), f.y);
-  return s;
-}
-
-// Level k's texel coordinate of t (level 0's): (t + 0.5) / size0 * size_k - 0.5, t itself at level 0.
-vec2 levelCoord(int k, vec2 t) {
-  if (k == 0) return t;
-  const vec2 s0 = vec2(size.zw), sk = vec2(normalLevels[k].yz);
-  precise vec2 scaled = (t + 0.5) * sk;
-  precise vec2 u = vec2(divF(scaled.x, s0.x), divF(scaled.y, s0.y)) - 0.5;
-  return u;
-}
-
-// sampleNormalMap: the level's (and the next one's, mixed by the fraction) gradients, normalised.
+// sampleNormalMap at terrain-local (x, z).
 vec3 mapNormal(float x, float z, float level) {
   const ivec2 n = size.zw;
   precise vec2 t = clamp(vec2(divF(x, light.w), divF(z, light.w)), 0.0, 1.0) * vec2(n - 1);
-  const float clamped = clamp(level, 0.0, shading.y - 1.0);
-  const int k0 = int(floor(clamped));
-  precise float frac = clamped - float(k0);
-  precise vec2 s = bilinear(k0, levelCoord(k0, t));
-  if (frac > 0.0) s = mixF(s, bilinear(k0 + 1, levelCoord(k0 + 1, t)), frac);
-  precise vec3 v = vec3(s.x, 1.0, s.y);
-  precise float len2 = v.x * v.x + v.y * v.y + v.z * v.z;
-  precise vec3 unit = v * divF(1.0, sqrtF(len2));  // glm::normalize: v * (1 / sqrt(dot(v, v)))
-  return unit;
+  return nsMapNormal(t, level, int(shading.y));
 }
 
 uint unorm8(float v) {

@@ -10,13 +10,14 @@
 #define LB_BINDING_SCHEME_BUF 5     // scheme storage buffer (e.g. tile adjacency)
 #define LB_BINDING_HISTOGRAM 7      // triangle-size histogram (measurement pass)
 #define LB_BINDING_SCHEME_IMAGE 6   // compute preprocessing only: the scheme texture as a storage image
-#define LB_BINDING_NORMAL 8         // terrain normal map, RG16F gradients, all mips (terrain/normal_map.h)
+#define LB_BINDING_NORMAL 8         // normal map pages: LB_NORMAL_ARRAYS RG16F 2D array images (normals.glsl)
 #define LB_BINDING_INSTANCES 9      // instanced-grid path: InstanceRecord per instance (render/instanced.h)
 #define LB_BINDING_MESH 10          // measurement pass: captured triangles of the instanced path (analytic cracks)
 #define LB_BINDING_LOD_STATE 11     // GPU-indirect path: the LOD state the compute passes keep across frames
 #define LB_BINDING_LOD_ARGS 12      // GPU-indirect path: VkDrawIndexedIndirectCommand the passes write
 #define LB_BINDING_MESH_TABLE 13    // mesh path: the tessellation patterns' strip table (tess_piece.h)
 #define LB_BINDING_HEIGHT_TABLE 14  // heightfield pages: HeightTableHeader, then one entry per page
+#define LB_BINDING_NORMAL_TABLE 15  // normal map pages: a header, then one ivec4 per level (normals.glsl)
 
 // The heightfield's pages (terrain/page_layout.h, docs/tiled-heightfield.md): a descriptor array of
 // this many page arrays (those a terrain does not need repeat the first), and per page one table
@@ -27,6 +28,10 @@
 // without it reads as though all were filled). At 1 the height reads take the array directly:
 // llvmpipe runs every case of a switch over the arrays, which cost lavapipe 1.7x its time a frame.
 #define LB_SPEC_HEIGHT_ARRAYS 16
+// The normal map's pages (terrain/normal_page_layout.h): as many arrays, and their count as a
+// specialization constant, for the same reasons.
+#define LB_NORMAL_ARRAYS 8
+#define LB_SPEC_NORMAL_ARRAYS 17
 #define LB_PAGE_LAYER_MASK 0x7ffu  // bits 0-10: layer in its array (maxImageArrayLayers is 2048 on the H100)
 #define LB_PAGE_ARRAY_SHIFT 11     // bits 11-14: array
 #define LB_PAGE_ARRAY_MASK 0xfu

@@ -68,8 +68,8 @@ static int listDevicesCmd() {
     // In pages of 1023 cells (4 MiB each, docs/tiled-heightfield.md): the terrain's "page".
     const int tiled = largestSquareTiledTerrain(l, kDevicesPage);
     std::printf(
-        "    largest terrain in pages of %d cells: %d x %d samples (maxImageArrayLayers %u; the normal map is "
-        "still one image)\n",
+        "    largest terrain in pages of %d cells: %d x %d samples (maxImageArrayLayers %u; heights and normal "
+        "map in pages)\n",
         kDevicesPage, tiled, tiled, l.maxImageArrayLayers);
     std::printf("    %s\n", meshShaderLine(d.mesh).c_str());
   }

@@ -47,14 +47,20 @@ struct RenderSettings {
   // Testing only: shade with the per-pixel normal from four height lookups that came before the
   // normal map (shaders/terrain.frag kHeightNormals); the geometry and counters are the same.
   bool testHeightNormals = false;
-  // Testing only: shade from the normal map's level 0 at every distance (the sampler's largest level
-  // is 0), as before the mip chain; the footprint's level is still computed, and ignored.
+  // Testing only: shade from the normal map's level 0 at every distance, as before the mip chain
+  // (shaders/terrain.frag kMipZero).
   bool testMipZeroShading = false;
   // Testing only: upload the heights' pages with a planted defect (render/height_pages.h).
   PageDefect testPageDefect = PageDefect::None;
   // Testing only: at most this many pages a page array (0: as many as the device allows), so a
   // small terrain fills several arrays as only the largest do otherwise.
   uint32_t testPageLayers = 0;
+  // Testing only: the normal map in pages of this many texels (0: chosen by the terrain's size),
+  // at most this many pages an array (0: as the device allows), with a planted defect
+  // (render/normal_pages.h), so a small terrain's map is cut as a large one's is.
+  int testNormalPageCells = 0;
+  uint32_t testNormalPageLayers = 0;
+  bool testNormalPageDefect = false;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

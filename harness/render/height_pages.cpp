@@ -5,6 +5,7 @@
 #include <string>
 
 #include "error.h"
+#include "render/page_arrays.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -12,9 +13,6 @@
 
 namespace lb {
 namespace {
-
-// Staging of one upload batch: whole layers, at least one.
-constexpr uint64_t kStagingBytes = 64ull << 20;
 
 // copyPage with the planted defects.
 void fillPage(const Heightfield& hf, const PageLayout& l, int i, int j, PageDefect defect, float* out) {
@@ -28,13 +26,6 @@ void fillPage(const Heightfield& hf, const PageLayout& l, int i, int j, PageDefe
 }
 
 }  // namespace
-
-uint32_t pageLayersPerArray(uint32_t maxImageArrayLayers, uint64_t maxAllocationBytes, uint64_t pageBytes) {
-  // Optimal tiling may pad a layer: keep a sixteenth of the largest allocation for it.
-  const uint64_t byMemory = (maxAllocationBytes - maxAllocationBytes / 16) / std::max<uint64_t>(pageBytes, 1);
-  const uint64_t layers = std::min<uint64_t>({maxImageArrayLayers, LB_PAGE_LAYER_MASK + 1, byMemory});
-  return uint32_t(std::max<uint64_t>(layers, 1));
-}
 
 HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect,
                               uint32_t maxLayers) {
@@ -56,46 +47,12 @@ HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag
   std::vector<uint32_t> table(sizeof(HeightTableHeader) / 4 + size_t(pages));
   HeightTableHeader header{{hf.width, hf.height, l.cellsX, l.cellsZ}, {l.pagesX, l.pagesZ, 0, 0}};
   std::memcpy(table.data(), &header, sizeof header);
-  const uint32_t layersPerBatch = uint32_t(std::max<uint64_t>(1, kStagingBytes / pageBytes));
-  for (int a = 0; a < arrays; ++a) {
-    const int first = a * int(perArray), count = std::min(int(perArray), pages - first);
-    Image img =
-        createImageArray(ctx, uint32_t(l.storedX()), uint32_t(l.storedZ()), uint32_t(count), VK_FORMAT_R32_SFLOAT,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, tag);
-    Buffer staging = createBuffer(ctx, VkDeviceSize(std::min<uint64_t>(count, layersPerBatch) * pageBytes),
-                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging});
-    for (int b = 0; b < count; b += int(layersPerBatch)) {
-      const int n = std::min(int(layersPerBatch), count - b);
-      std::vector<VkBufferImageCopy> regions;
-      for (int k = 0; k < n; ++k) {
-        const int p = first + b + k;
-        fillPage(hf, l, p % l.pagesX, p / l.pagesX, defect,
-                 reinterpret_cast<float*>(static_cast<char*>(staging.mapped) + size_t(k) * pageBytes));
-        table[sizeof(HeightTableHeader) / 4 + size_t(p)] =
-            uint32_t(b + k) | (uint32_t(a) << LB_PAGE_ARRAY_SHIFT);  // level 0, resident
-        VkBufferImageCopy region{};
-        region.bufferOffset = VkDeviceSize(k) * pageBytes;
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, uint32_t(b + k), 1};
-        region.imageExtent = {uint32_t(l.storedX()), uint32_t(l.storedZ()), 1};
-        regions.push_back(region);
-      }
-      const bool firstBatch = b == 0, lastBatch = b + n >= count;
-      runOneShot(ctx, [&](VkCommandBuffer cmd) {
-        if (firstBatch)
-          imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               uint32_t(regions.size()), regions.data());
-        if (lastBatch)
-          imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                       VK_ACCESS_2_SHADER_READ_BIT);
-      });
-    }
-    out.arrays.push_back(std::move(img));
-  }
+  for (int p = 0; p < pages; ++p)
+    table[sizeof(HeightTableHeader) / 4 + size_t(p)] =
+        uint32_t(p) % perArray | (uint32_t(p) / perArray << LB_PAGE_ARRAY_SHIFT);  // level 0, resident
+  out.arrays = uploadPageArrays(
+      ctx, uint32_t(l.storedX()), uint32_t(l.storedZ()), VK_FORMAT_R32_SFLOAT, sizeof(float), pages, perArray, tag,
+      [&](int p, void* dst) { fillPage(hf, l, p % l.pagesX, p / l.pagesX, defect, static_cast<float*>(dst)); });
   if (defect == PageDefect::WrongLayer && pages > 1)
     table[sizeof(HeightTableHeader) / 4 + size_t(pages / 2)] = table[sizeof(HeightTableHeader) / 4];
   out.table = createBufferWithData(ctx, table.data(), VkDeviceSize(table.size()) * sizeof(uint32_t),
@@ -104,21 +61,8 @@ HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag
 }
 
 void writeHeightDescriptors(Context& ctx, VkDescriptorSet set, const HeightPages& pages, VkSampler sampler) {
-  VkDescriptorImageInfo images[LB_HEIGHT_ARRAYS];
-  for (size_t a = 0; a < LB_HEIGHT_ARRAYS; ++a)
-    images[a] = {sampler, pages.arrays[a < pages.arrays.size() ? a : 0].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorBufferInfo table{pages.table.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  w[0].dstSet = w[1].dstSet = set;
-  w[0].dstBinding = LB_BINDING_HEIGHT;
-  w[0].descriptorCount = LB_HEIGHT_ARRAYS;
-  w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w[0].pImageInfo = images;
-  w[1].dstBinding = LB_BINDING_HEIGHT_TABLE;
-  w[1].descriptorCount = 1;
-  w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  w[1].pBufferInfo = &table;
-  vkUpdateDescriptorSets(ctx.device, 2, w, 0, nullptr);
+  writePageDescriptors(ctx, set, LB_BINDING_HEIGHT, LB_HEIGHT_ARRAYS, pages.arrays, LB_BINDING_HEIGHT_TABLE,
+                       pages.table, sampler);
 }
 
 std::vector<DescriptorBinding> heightBindings(VkShaderStageFlags stages) {

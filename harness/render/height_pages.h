@@ -24,8 +24,6 @@ struct HeightPages {
 // caps the layers an array holds (testing only: RenderSettings::testPageLayers).
 HeightPages createHeightPages(Context& ctx, const Heightfield& hf, MemoryTag tag, PageDefect defect = PageDefect::None,
                               uint32_t maxLayers = 0);
-// How many page layers one array of this device takes for pages of `pageBytes` bytes.
-uint32_t pageLayersPerArray(uint32_t maxImageArrayLayers, uint64_t maxAllocationBytes, uint64_t pageBytes);
 
 // Writes LB_BINDING_HEIGHT (every element of the descriptor array; those the terrain does not need
 // repeat the first array) and LB_BINDING_HEIGHT_TABLE of `set`.

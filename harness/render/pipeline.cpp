@@ -12,7 +12,7 @@ namespace lb {
 vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& desc) {
   std::vector<vk::Unique<VkShaderModule>> modules;
   std::vector<VkPipelineShaderStageCreateInfo> stages;
-  // Each stage's own constants, then the height arrays' (a constant a stage does not declare is
+  // Each stage's own constants, then the page arrays' counts (a constant a stage does not declare is
   // ignored): sized up front, so the pointers into them hold until the pipeline is made.
   std::vector<std::vector<VkSpecializationMapEntry>> entries(desc.stages.size());
   std::vector<std::vector<uint8_t>> data(desc.stages.size());
@@ -25,18 +25,23 @@ vk::Unique<VkPipeline> createTessPipeline(Context& ctx, const TessPipelineDesc& 
     st.module = modules.back();
     st.pName = "main";
     st.pSpecializationInfo = s.specialization;
-    if (desc.heightArrays > 0) {
+    if (desc.heightArrays > 0 || desc.normalArrays > 0) {
       const VkSpecializationInfo* own = s.specialization;
       if (own) {
         entries[i].assign(own->pMapEntries, own->pMapEntries + own->mapEntryCount);
         data[i].assign(static_cast<const uint8_t*>(own->pData),
                        static_cast<const uint8_t*>(own->pData) + own->dataSize);
       }
-      data[i].resize((data[i].size() + 3) / 4 * 4);
-      entries[i].push_back({LB_SPEC_HEIGHT_ARRAYS, uint32_t(data[i].size()), sizeof(int32_t)});
-      const int32_t arrays = int32_t(desc.heightArrays);
-      data[i].resize(data[i].size() + sizeof arrays);
-      std::memcpy(data[i].data() + data[i].size() - sizeof arrays, &arrays, sizeof arrays);
+      auto add = [&](uint32_t id, uint32_t value) {
+        if (value == 0) return;
+        data[i].resize((data[i].size() + 3) / 4 * 4);
+        entries[i].push_back({id, uint32_t(data[i].size()), sizeof(int32_t)});
+        const int32_t v = int32_t(value);
+        data[i].resize(data[i].size() + sizeof v);
+        std::memcpy(data[i].data() + data[i].size() - sizeof v, &v, sizeof v);
+      };
+      add(LB_SPEC_HEIGHT_ARRAYS, desc.heightArrays);
+      add(LB_SPEC_NORMAL_ARRAYS, desc.normalArrays);
       specs[i] = {uint32_t(entries[i].size()), entries[i].data(), data[i].size(), data[i].data()};
       st.pSpecializationInfo = &specs[i];
     }

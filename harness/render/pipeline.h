@@ -49,6 +49,8 @@ struct TessPipelineDesc {
   // specialization constant LB_SPEC_HEIGHT_ARRAYS; 0: not given (the shaders read as though all
   // arrays were filled, which is right for any terrain, only slower on some drivers).
   uint32_t heightArrays = 0;
+  // The same for the normal map's page arrays (render/normal_pages.h): LB_SPEC_NORMAL_ARRAYS.
+  uint32_t normalArrays = 0;
 };
 
 // Loads the stages' modules, builds the pipeline and releases the modules (also when it throws).

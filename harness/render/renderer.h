@@ -14,6 +14,7 @@
 #include "render/frame_slot.h"
 #include "render/gpu_profiler.h"
 #include "render/height_pages.h"
+#include "render/normal_pages.h"
 #include "render/path_drawer.h"
 #include "render/scheme.h"
 #include "vk/resources.h"
@@ -113,13 +114,14 @@ class Renderer {
   RenderSettings settings_;
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
-  Image color_, errorTarget_, depth_, schemeTex_, normalMap_;
+  Image color_, errorTarget_, depth_, schemeTex_;
   HeightPages heights_;        // the heightfield's pages and their table (render/height_pages.h)
+  NormalPages normals_;        // the normal map's pages and their table (render/normal_pages.h)
   int schemeTexChannels_ = 4;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
   SetupCosts setupCosts_;
   Buffer histogram_, readback_, uniforms_;
   VkDeviceSize uniformStride_ = 0;
-  vk::Unique<VkSampler> sampler_, linearSampler_;  // linear: the normal map's
+  vk::Unique<VkSampler> sampler_;
   Bindings bindings_;
   std::map<int, vk::Unique<VkPipeline>> pipelines_;  // key: mode * 2 + capture
   vk::Unique<VkCommandPool> commandPool_;

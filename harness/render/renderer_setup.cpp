@@ -9,6 +9,7 @@
 #include "error.h"
 #include "render/compute_pass.h"
 #include "render/height_pages.h"
+#include "render/normal_pages.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
@@ -78,16 +79,9 @@ void Renderer::createTargets() {
   const std::shared_ptr<const NormalMap> kept = sharedNormalMap(terrain_);
   const NormalMap& normals = *kept;
   setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
-  normalMap_ = createImage(ctx_, uint32_t(normals.width), uint32_t(normals.height), VK_FORMAT_R16G16_SFLOAT,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                           tag(GpuResource::NormalMap), uint32_t(normals.levels()));
-  std::vector<ImageLevelData> levels;
-  for (int k = 0; k < normals.levels(); ++k)
-    levels.push_back({normals.levelTexels(k).data(), normals.levelTexels(k).size() * sizeof(uint16_t)});
-  uploadImageLevels(ctx_, normalMap_, levels);
-  // Trilinear over every level: terrain.frag chooses the level (textureLod), never the derivatives.
-  linearSampler_ =
-      createSampler(ctx_, VK_FILTER_LINEAR, settings_.testMipZeroShading ? 0.0f : float(normals.levels() - 1));
+  normals_ = createNormalPages(
+      ctx_, normals, tag(GpuResource::NormalMap), settings_.testNormalPageCells, settings_.testNormalPageLayers,
+      settings_.testNormalPageDefect ? NormalPageDefect::OriginOffByOne : NormalPageDefect::None);
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
   uniforms_ =
@@ -97,19 +91,18 @@ void Renderer::createTargets() {
 void Renderer::createDescriptors() {
   const VkShaderStageFlags all = layoutStages(ctx_);
   std::vector<DescriptorBinding> layout = heightBindings(all);
-  layout.insert(layout.end(),
-                {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
-                 {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
-                 {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                 {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
-                 {LB_BINDING_MESH_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}});
+  for (const DescriptorBinding& b : normalBindings(VK_SHADER_STAGE_FRAGMENT_BIT)) layout.push_back(b);
+  layout.insert(layout.end(), {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
+                               {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
+                               {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_CAPTURE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_SCHEME_BUF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_MESH, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_LOD_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_LOD_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
+                               {LB_BINDING_MESH_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all}});
   bindings_ = createBindings(ctx_, layout, all, sizeof(DrawPush));
 }
 
@@ -174,7 +167,6 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
 
   VkDescriptorBufferInfo ub{uniforms_.buffer, 0, sizeof(FrameUniforms)};
   VkDescriptorImageInfo si{sampler_, schemeTex_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorImageInfo ni{linearSampler_, normalMap_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo hb{histogram_.buffer, 0, VK_WHOLE_SIZE};
   auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorImageInfo* img,
                    const VkDescriptorBufferInfo* buf) {
@@ -191,10 +183,10 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &ub),
       write(LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &si, nullptr),
       write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
-      write(LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &ni, nullptr),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
   writeHeightDescriptors(ctx_, bindings_.set, heights_, sampler_);
+  writeNormalDescriptors(ctx_, bindings_.set, normals_, sampler_);
   bindPathBuffers();
 }
 
@@ -261,17 +253,18 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   const bool wire = mode == RenderMode::Wireframe;
   struct FragSpec {
     int mode;
-    VkBool32 heightNormals;
-  } fragValues{int(mode), settings_.testHeightNormals};
+    VkBool32 heightNormals, mipZero;
+  } fragValues{int(mode), settings_.testHeightNormals, settings_.testMipZeroShading};
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
   // Paths with instances capture the drawn mesh in the histogram pass (analytic cracks).
   VkBool32 meshValue = g.meshCapture;
   VkSpecializationMapEntry meshEntry{2, 0, sizeof(VkBool32)};
   VkSpecializationInfo meshSpec{1, &meshEntry, sizeof(VkBool32), &meshValue};
-  VkSpecializationMapEntry fragEntries[2] = {{0, offsetof(FragSpec, mode), sizeof(int)},
-                                             {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)}};
-  VkSpecializationInfo modeSpec{2, fragEntries, sizeof(FragSpec), &fragValues};
+  VkSpecializationMapEntry fragEntries[3] = {{0, offsetof(FragSpec, mode), sizeof(int)},
+                                             {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)},
+                                             {2, offsetof(FragSpec, mipZero), sizeof(VkBool32)}};
+  VkSpecializationInfo modeSpec{3, fragEntries, sizeof(FragSpec), &fragValues};
   VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
   // A mesh stage's histogram pass: constant 3 bins, constant 2 captures the mesh (as the geometry shader's).
   struct MeshSpec {
@@ -300,6 +293,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
     d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", g.meshCapture ? &meshSpec : nullptr});
   d.controlPoints = g.controlPoints;
   d.heightArrays = uint32_t(heights_.arrays.size());
+  d.normalArrays = uint32_t(normals_.arrays.size());
   d.width = uint32_t(settings_.width);
   d.height = uint32_t(settings_.height);
   d.polygonMode = wire ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;

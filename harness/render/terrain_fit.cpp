@@ -3,7 +3,8 @@
 #include <algorithm>
 
 #include "error.h"
-#include "render/height_pages.h"
+#include "render/normal_pages.h"
+#include "render/page_arrays.h"
 #include "shaders/shared.h"
 #include "terrain/page_layout.h"
 #include "terrain/terrain_shape.h"
@@ -43,26 +44,18 @@ std::string tiledLimitProblem(const DeviceLimits& d, int width, int height, int 
     return size + " in " + std::to_string(l.pageCount()) + " pages of " + std::to_string(page) + " cells need " +
            std::to_string(arrays) + " page arrays of " + std::to_string(perArray) + " layers on " + d.name +
            "; the shaders bind " + std::to_string(LB_HEIGHT_ARRAYS);
-  // The normal map (R16G16F, 4 bytes a sample) is one image of the terrain's samples until it has pages.
-  const uint64_t samples = uint64_t(width) * uint64_t(height), normalBytes = samples * 4;
-  if (uint32_t(std::max(width, height)) > d.maxImageDimension2D)
-    return size + " exceed " + d.name + "'s maxImageDimension2D of " + std::to_string(d.maxImageDimension2D) +
-           " for the normal map, which is still one image of the terrain's samples (its pages are not built yet)";
-  if (normalBytes > d.maxAllocationBytes)
-    return size + " need a " + mib(normalBytes) + " normal map, more than " + d.name +
-           "'s largest allocation (maxMemoryAllocationSize " + mib(d.maxAllocationBytes) +
-           "): it is still one image (its pages are not built yet)";
-  // The pages, the normal map and, on one heap, the normal map's staging at its upload.
+  // The normal map's pages (render/normal_pages.h), uploaded through a bounded staging buffer.
+  const NormalPagesFit normals = normalPagesFit(width, height, d.maxImageArrayLayers, d.maxAllocationBytes);
+  if (normals.arrays > LB_NORMAL_ARRAYS)
+    return size + " need a normal map of " + std::to_string(normals.arrays) + " page arrays of " +
+           std::to_string(normals.perArray) + " layers on " + d.name + "; the shaders bind " +
+           std::to_string(LB_NORMAL_ARRAYS);
   const uint64_t pagesBytes = pageBytes * uint64_t(l.pageCount());
-  const uint64_t need = pagesBytes + normalBytes + (d.sharedHeap ? normalBytes : 0) + kDeviceReserveBytes;
+  const uint64_t need = pagesBytes + normals.bytes + kDeviceReserveBytes;
   if (need > d.deviceHeapBytes)
     return size + " in pages of " + std::to_string(page) + " cells need " + mib(need) + " of " + d.name + "'s " +
-           mib(d.deviceHeapBytes) + " memory heap (pages " + mib(pagesBytes) + ", normal map " + mib(normalBytes) +
-           (d.sharedHeap ? ", its staging" : "") + "; plus " + mib(kDeviceReserveBytes) +
-           " for render targets and buffers)";
-  if (!d.sharedHeap && normalBytes > d.stagingHeapBytes)
-    return size + " need a " + mib(normalBytes) + " staging buffer for the normal map, more than " + d.name + "'s " +
-           mib(d.stagingHeapBytes) + " host-visible heap";
+           mib(d.deviceHeapBytes) + " memory heap (height pages " + mib(pagesBytes) + ", normal map pages " +
+           mib(normals.bytes) + "; plus " + mib(kDeviceReserveBytes) + " for render targets and buffers)";
   return "";
 }
 

@@ -9,9 +9,8 @@
 namespace lb {
 
 // The limit of a terrain whose heights are pages of `page` cells (docs/tiled-heightfield.md): the
-// pages' bytes on the device heap and in at most LB_HEIGHT_ARRAYS arrays, not one image. The
-// normal map is still one image of the terrain's samples, so maxImageDimension2D and the largest
-// allocation still bound it. page 0: terrainLimitProblem's single image. "" when it fits.
+// pages' bytes and the normal map's pages (render/normal_pages.h) on the device heap, each in at most
+// 8 arrays, not one image. page 0: terrainLimitProblem's single image. "" when it fits.
 std::string tiledLimitProblem(const DeviceLimits& d, int width, int height, int page);
 // The largest square terrain in pages of `page` cells the device takes.
 int largestSquareTiledTerrain(const DeviceLimits& d, int page);

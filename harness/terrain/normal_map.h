@@ -1,8 +1,8 @@
 #pragma once
-// Per-terrain normal map: computed once on the CPU at terrain load, uploaded by the
-// renderer (LB_BINDING_NORMAL) and fetched once per pixel with a linear sampler in
-// shaders/terrain.frag; the ray-cast ground truth (metrics/raycast_shade.h) samples the same texels
-// with the same bilinear weights, so the reference shades exactly as the renderer does.
+// Per-terrain normal map: computed once on the CPU at terrain load, uploaded by the renderer in
+// pages (render/normal_pages.h) and filtered per pixel by shaders/normal_sample.glsl, which the GPU
+// ray cast shares and sampleNormalMap below repeats on the CPU: the same texels and the same
+// arithmetic, so the reference shades as the renderer does.
 //
 // Format: VK_FORMAT_R16G16_SFLOAT holding, per heightfield sample, the x and z components of the
 // unnormalised normal (gx, 1, gz) = ((h[i-1] - h[i+1]) / 2dx, 1, (h[j-1] - h[j+1]) / 2dz), the
@@ -45,14 +45,13 @@ struct NormalMap {
 
 NormalMap computeNormalMap(const Heightfield& hf);
 
-// Unit normal at terrain-local (x, z): bilinear filtering of the texels as a linear sampler does it
-// at texel coordinate t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then
-// normalize(gx, 1, gz), in float as shaders/terrain.frag does it. The GPU's filter weights carry
-// a limited sub-texel precision (8 bits on lavapipe and NVIDIA), so the two agree up to rounding.
+// Unit normal at terrain-local (x, z): bilinear filtering of the texels at texel coordinate
+// t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then normalize(gx, 1, gz),
+// in float as shaders/normal_sample.glsl does it (the GPU may round a step differently).
 //
-// level > 0 (shadingLevel, shaders/footprint.h): trilinear, as a linear-mipmap sampler reads
-// textureLod(normalMap, (t + 0.5) / size, level): levels floor(level) and the next mixed by the
-// fraction; at level k > 0 the texel coordinate is (t + 0.5) size_k / size - 0.5, clamped to the edge.
+// level > 0 (shadingLevel, shaders/footprint.h): trilinear: levels floor(level) and the next mixed
+// by the fraction; at level k > 0 the texel coordinate is (t + 0.5) size_k / size - 0.5, both
+// texels of an axis clamped to the edge.
 glm::vec3 sampleNormalMap(const NormalMap& nm, float extent, float x, float z, float level = 0.0f);
 
 uint16_t floatToHalf(float f);  // round to nearest even, clamped to the finite range

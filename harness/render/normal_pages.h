@@ -1,0 +1,45 @@
+#pragma once
+// The normal map on the device (docs/tiled-heightfield.md): every level in pages
+// (terrain/normal_page_layout.h) as layers of RG16F 2D array images, and the level table that
+// shaders/normals.glsl reads them through. Built once per terrain by the renderer.
+#include <vector>
+
+#include "terrain/normal_page_layout.h"
+#include "vk/resources.h"
+
+namespace lb {
+
+struct Context;
+
+struct NormalPages {
+  NormalPageLayout layout;
+  uint32_t perArray = 1;      // layers an array holds
+  std::vector<Image> arrays;  // up to LB_NORMAL_ARRAYS
+  Buffer table;               // header, then one ivec4 per level (shaders/normals.glsl)
+};
+
+// Testing only: pages after the first of a row start one texel too far along x, a defect the
+// paging test (tests/test_normal_pages.cpp) must see.
+enum class NormalPageDefect { None, OriginOffByOne };
+
+// `cells` 0 lets normalPageLayout choose; `maxLayers` > 0 caps an array's layers (testing). Throws
+// FeatureMissing when the pages need more than LB_NORMAL_ARRAYS arrays.
+NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, int cells = 0, uint32_t maxLayers = 0,
+                              NormalPageDefect defect = NormalPageDefect::None);
+// The pages' device bytes and array count for a width x height terrain on a device with these
+// limits (render/terrain_fit.cpp checks them before any work); arrays > LB_NORMAL_ARRAYS: too large.
+struct NormalPagesFit {
+  uint64_t bytes = 0;
+  uint64_t arrays = 0;
+  uint32_t perArray = 1;
+  int cells = 1;
+};
+NormalPagesFit normalPagesFit(int width, int height, uint32_t maxImageArrayLayers, uint64_t maxAllocationBytes);
+
+// Writes LB_BINDING_NORMAL (every element; those the map does not fill repeat the first array) and
+// LB_BINDING_NORMAL_TABLE of `set`.
+void writeNormalDescriptors(Context& ctx, VkDescriptorSet set, const NormalPages& pages, VkSampler sampler);
+// The two bindings as createBindings takes them.
+std::vector<DescriptorBinding> normalBindings(VkShaderStageFlags stages);
+
+}  // namespace lb
