@@ -174,8 +174,8 @@ class MeshDrawer : public PathDrawer {
     const MemoryTag geometry{GpuResource::Geometry, env_.memory};
     patches_ = createBufferWithData(ctx, records.data(), bytes(records), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
     bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
-    capture_ = createBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, {GpuResource::Capture, env_.memory});
+    capture_ = createReadBackBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::Capture, env_.memory});
     std::memset(capture_.mapped, 0, size_t(capture_.size));
     if (groupsFor(patchCount_, LB_MESH_TASK_RECORDS) > ctx.meshLimits.maxTaskWorkGroupCountX)
       throw FeatureMissing("scheme '" + scheme.info().name + "': " + std::to_string(patchCount_) +

@@ -52,8 +52,8 @@ class PatchDrawer : public PathDrawer {
     bounds_ = createBufferWithData(ctx, g.bounds.data(), bytes(g.bounds), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, geometry);
     schemeBuf_ = createBufferWithData(ctx, g.schemeBuffer.data(), bytes(g.schemeBuffer),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::SchemeTables, env.memory});
-    capture_ = createBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, {GpuResource::Capture, env.memory});
+    capture_ = createReadBackBuffer(ctx, VkDeviceSize(patchCount_) * LB_CAPTURE_STRIDE * sizeof(float),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, {GpuResource::Capture, env.memory});
     std::memset(capture_.mapped, 0, size_t(capture_.size));
     uint32_t perPatch = maxVerticesPerPatch(scheme.maxLevel(params), scheme.partitioning(params));
     patchesPerDraw_ = std::max(1u, std::min(kMaxVerticesPerDraw / perPatch, kMaxIndicesPerDraw / controlPoints_));

@@ -1,6 +1,7 @@
 #include "vk/resources.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -13,13 +14,24 @@
 
 namespace lb {
 
-static uint32_t findMemoryType(Context& ctx, uint32_t bits, VkMemoryPropertyFlags want) {
+// The first type of `bits` with `want`, else `fallback`.
+static uint32_t preferMemoryType(Context& ctx, uint32_t bits, VkMemoryPropertyFlags want, uint32_t fallback) {
   for (uint32_t i = 0; i < ctx.memProps.memoryTypeCount; ++i)
     if ((bits & (1u << i)) && (ctx.memProps.memoryTypes[i].propertyFlags & want) == want) return i;
-  throw std::runtime_error("no Vulkan memory type with the required properties");
+  return fallback;
 }
 
-Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, MemoryTag tag) {
+static uint32_t findMemoryType(Context& ctx, uint32_t bits, VkMemoryPropertyFlags want) {
+  const uint32_t i = preferMemoryType(ctx, bits, want, UINT32_MAX);
+  if (i == UINT32_MAX) throw std::runtime_error("no Vulkan memory type with the required properties");
+  return i;
+}
+
+static constexpr VkMemoryPropertyFlags kHost =
+    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+
+static Buffer makeBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, bool readBack,
+                         MemoryTag tag) {
   Buffer b;
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
@@ -31,10 +43,13 @@ Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, b
   vkGetBufferMemoryRequirements(ctx.device, buffer, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
-  ai.memoryTypeIndex =
-      findMemoryType(ctx, req.memoryTypeBits,
-                     hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                 : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  ai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits,
+                                      hostVisible ? kHost : VkMemoryPropertyFlags(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT));
+  // A read-back is read by the host: cached memory where the device has it (the first HOST_VISIBLE
+  // type of a discrete GPU is write-combined, which the host reads uncached).
+  if (hostVisible && (readBack || usage == VK_BUFFER_USAGE_TRANSFER_DST_BIT))
+    ai.memoryTypeIndex =
+        preferMemoryType(ctx, req.memoryTypeBits, kHost | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, ai.memoryTypeIndex);
   VkDeviceMemory memory;
   VK_CHECK(vkAllocateMemory(ctx.device, &ai, nullptr, &memory));
   b.memory = vk::Unique(ctx.device, memory);
@@ -43,6 +58,14 @@ Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, b
   b.size = size;
   if (hostVisible) VK_CHECK(vkMapMemory(ctx.device, memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;
+}
+
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, MemoryTag tag) {
+  return makeBuffer(ctx, size, usage, hostVisible, false, tag);
+}
+
+Buffer createReadBackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryTag tag) {
+  return makeBuffer(ctx, size, usage, true, true, tag);
 }
 
 Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,

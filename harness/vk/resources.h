@@ -36,8 +36,13 @@ struct Image {
 };
 
 // hostVisible: HOST_VISIBLE|COHERENT and mapped; otherwise DEVICE_LOCAL. Every helper charges the
-// allocation to `tag` (vk/gpu_memory.h): what it holds and whose it is.
+// allocation to `tag` (vk/gpu_memory.h): what it holds and whose it is. A host-visible buffer the
+// device can only copy into (usage TRANSFER_DST alone) is a read-back, made as createReadBackBuffer.
 Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible, MemoryTag tag = {});
+// Host-visible and mapped, for the host to read what the device wrote (captures, read-backs):
+// HOST_CACHED too where the device has such a type, since the host reads write-combined memory
+// uncached (on a discrete GPU, tens of times slower); the same type as createBuffer's otherwise.
+Buffer createReadBackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryTag tag = {});
 // Device-local buffer filled through a staging copy (the staging charged as Staging to tag's account).
 Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
                             MemoryTag tag = {});
