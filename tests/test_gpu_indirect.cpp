@@ -62,6 +62,15 @@ TEST_F(GpuIndirect, StateIsResetSnapshottedAndRestored) {
   EXPECT_EQ(updates(), 3u);
   renderOnce(r, overviewPose());
   EXPECT_EQ(updates(), 4u);
+  // keep() sets a copy aside beside the snapshot; putBack() restores it and leaves the snapshot.
+  EXPECT_THROW(r.lodState().putBack(), std::logic_error) << "nothing kept yet";
+  r.lodState().keep();
+  for (int i = 0; i < 2; ++i) renderOnce(r, overviewPose());
+  EXPECT_EQ(updates(), 6u);
+  r.lodState().putBack();
+  EXPECT_EQ(updates(), 4u);
+  r.lodState().restore();
+  EXPECT_EQ(updates(), 3u);
   r.lodState().reset();
   EXPECT_EQ(updates(), 0u);
   const std::vector<uint32_t> state = r.lodState().read();

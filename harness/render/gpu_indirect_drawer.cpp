@@ -173,6 +173,16 @@ class GpuIndirectDrawer : public PathDrawer, public LodState {
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, {GpuResource::Staging, env_.memory});
     copyState(from, state_);
   }
+  void keep() override {
+    if (!kept_.buffer)  // made on first use: only a settle series keeps states
+      kept_ = createBuffer(env_.ctx, state_.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           false, {GpuResource::Staging, env_.memory});
+    copyState(state_, kept_);
+  }
+  void putBack() override {
+    if (!kept_.buffer) throw std::logic_error("LodState::putBack: nothing kept");
+    copyState(kept_, state_);
+  }
   uint32_t update(const CameraPose& pose) override {
     env_.finish();
     // The passes read the frame uniforms of a slot like a frame's; no frame is in flight to share it.
@@ -264,6 +274,7 @@ class GpuIndirectDrawer : public PathDrawer, public LodState {
   std::vector<vk::Unique<VkPipeline>> pipelines_;  // the passes'
   Buffer vertices_, indices_, instances_;
   Buffer state_, snapshot_, args_, argsReadback_;  // argsReadback_: a copy of args_ per slot, for the host
+  Buffer kept_;                                    // keep()'s copy
   bool frozen_ = false;
   uint32_t lastInstances_ = 0;  // the instance count the last update left
   uint32_t lastOverflow_ = 0;   // and the instances it could not draw (GpuLod::overflowWord)

@@ -19,6 +19,11 @@ class LodState {
   virtual void restore() = 0;   // copies the snapshot back
   virtual std::vector<uint32_t> read() = 0;
   virtual void load(const std::vector<uint32_t>& words) = 0;  // the whole state, e.g. another renderer's
+  // A second copy aside on the device, beside the snapshot, and back: what read() and load() do for
+  // a caller that puts this renderer's own state back, without the state (up to 64 MiB) crossing to
+  // the host and back.
+  virtual void keep() = 0;
+  virtual void putBack() = 0;
   // One frame's LOD passes alone for `pose`; returns the instance count they left.
   virtual uint32_t update(const CameraPose& pose) = 0;
   // While frozen, frames draw the last update's instances without running the passes, so

@@ -80,7 +80,7 @@ std::vector<SettleFrame> settleSeries(Renderer& r, const std::function<CameraPos
       s.err = meanError(r.renderErrorMap(p, p));
     }
     // Settled as convergeLod settles, but from the frame's state rather than a reset.
-    const std::vector<uint32_t> saved = lod.read();
+    lod.keep();
     const int limit = int(lod.gpuLod().convergeLimit);
     uint32_t last = 0;
     for (int u = 0, steady = 0; u < limit && steady < kSteadyUpdates; ++u) {
@@ -92,7 +92,7 @@ std::vector<SettleFrame> settleSeries(Renderer& r, const std::function<CameraPos
       FrozenLod frozen(r);
       s.settled = meanError(r.renderErrorMap(p, p));
     }
-    lod.load(saved);
+    lod.putBack();
     out.push_back(s);
   }
   return out;
