@@ -44,6 +44,9 @@ TEST_F(GpuIndirect, DrawsWhatTheGpuSelectedAndTheSamePixelsAsTheCpuPath) {
     EXPECT_EQ(h.total(), g.stats.clipInvocations);
     EXPECT_EQ(gpuPath.capturedMesh().size(), size_t(g.stats.clipInvocations) * 3);
     EXPECT_EQ(meshCracks(gpuPath.capturedMesh(), {glm::vec2(0.0f), glm::vec2(hf.extent)}).crackSites, 0);
+    // Without a reader of the mesh (keepMesh false) the same histogram, and no mesh copied.
+    EXPECT_EQ(gpuPath.measureHistogram(pose, pose, nullptr, false).total(), h.total());
+    EXPECT_TRUE(gpuPath.capturedMesh().empty());
   }
   EXPECT_TRUE(someCulled) << "lowalt culls part of the grid: the count must come from the GPU";
 }

@@ -64,8 +64,8 @@ void Renderer::prepareMeshCapture(uint64_t triangles) {
   if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
     meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
     if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
-    mesh_ = createBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
-                         tag(GpuResource::Capture));
+    mesh_ = createReadBackBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                 tag(GpuResource::Capture));
     bindPathBuffers();
   }
   auto* head = static_cast<uint32_t*>(mesh_.mapped);
@@ -265,7 +265,8 @@ void Renderer::renderInto(const CameraPose& view, const CameraPose& lod, RenderM
   if (result && !done.empty()) *result = done.back();
 }
 
-TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result) {
+TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result,
+                                             bool keepMesh) {
   const bool mesh = path_ && path_->stages().meshCapture;
   // A path whose GPU decides its triangles without a bound the host knows (a mesh path's task
   // shader) may outgrow the capture: it then gets room for what it drew and draws once more.
@@ -287,6 +288,9 @@ TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const Camer
     if (head[0] > head[1])
       throw std::logic_error("mesh capture: " + std::to_string(head[0]) + " triangles drawn, room for " +
                              std::to_string(head[1]));
+  }
+  if (mesh && keepMesh) {  // millions of vertices at 1080p on a large terrain: copied only for a reader
+    const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
     const auto* v = reinterpret_cast<const glm::vec4*>(static_cast<const char*>(mesh_.mapped) + 16);
     capturedMesh_.reserve(size_t(head[0]) * 3);
     for (size_t i = 0; i < size_t(head[0]) * 3; ++i) capturedMesh_.emplace_back(v[i]);

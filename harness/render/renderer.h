@@ -63,7 +63,10 @@ class Renderer {
   // RenderSettings::sky for the frames submitted from now on (images for people between measurements).
   void setSky(bool on) { settings_.sky = on; }
   // Measurement passes, separate from timing frames (each waits for frames in flight).
-  TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr);
+  // keepMesh false: a path with instances still captures its drawn mesh on the device (the capture
+  // grows as it would) but leaves capturedMesh() empty, for a caller that reads no mesh.
+  TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr,
+                                     bool keepMesh = true);
   std::vector<float> renderErrorMap(const CameraPose& view, const CameraPose& lod);
   // The scheme texture (CPU preprocessing or compute pass output) read back from the GPU.
   SchemeTexture readSchemeTexture();
@@ -82,7 +85,7 @@ class Renderer {
   bool hasLodState() const { return path_ && path_->lodState(); }
   bool statefulLod() const;  // GpuLod::convergeLimit > 0: measured by replaying its updates
   // Paths with instances: every triangle's three world vertices the last measureHistogram drew
-  // (captured by its geometry shader); empty on the tessellation path.
+  // (captured by its geometry shader); empty on the tessellation path and after keepMesh false.
   const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
   // Device memory this renderer and its path hold now, by resource (vk/gpu_memory.h): what a case's
   // summary.memory records.

@@ -92,7 +92,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
 
   bool histogram = spec.on("histogram");
   if (histogram) try {
-      m.histogram = r.measureHistogram(current, current);
+      m.histogram = r.measureHistogram(current, current, nullptr, spec.on("cracks"));  // the mesh: cracks only
     } catch (const FeatureMissing& e) {  // an optional pass: null with its reason, the frame stays
       m.unavailable["histogram"] = e.what();
       histogram = false;
