@@ -14,6 +14,7 @@
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/page_layout.h"
+#include "terrain/terrain_cache.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -112,7 +113,9 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
     levelTable_.insert(levelTable_.end(), {uint32_t(allLevels.size()), uint32_t(l.w), uint32_t(l.h), 0u});
     allLevels.insert(allLevels.end(), l.max.begin(), l.max.end());
   }
-  const NormalMap normals = computeNormalMap(hf);
+  // The renderer's map where the terrain is the kept one (terrain/terrain_cache.h): seconds at 16385^2.
+  const std::shared_ptr<const NormalMap> shared = sharedNormalMap(hf);
+  const NormalMap& normals = *shared;
   const MemoryTag measure{GpuResource::Measure};
   heights_ = createBufferWithData(ctx, heights.data(), heightBytes, kStorage, measure);
   mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage, measure);

@@ -11,6 +11,8 @@
 #include "shaders/footprint.h"
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
+#include "terrain/parallel_rows.h"
+#include "terrain/terrain_cache.h"
 
 namespace lb {
 
@@ -64,10 +66,14 @@ MaxMipmap buildMaxMipmap(const Heightfield& hf) {
   l0.w = std::max(hf.width - 1, 1);
   l0.h = std::max(hf.height - 1, 1);
   l0.max.resize(size_t(l0.w) * size_t(l0.h));
-  for (int z = 0; z < l0.h; ++z)
-    for (int x = 0; x < l0.w; ++x)
-      l0.max[size_t(z) * size_t(l0.w) + size_t(x)] =
-          std::max(std::max(hf.at(x, z), hf.at(x + 1, z)), std::max(hf.at(x, z + 1), hf.at(x + 1, z + 1)));
+  // In bands of rows (terrain/parallel_rows.h): seconds of one thread at 16385^2. Each band writes
+  // its own rows and takes each maximum in the order of one thread, so the pyramid is the same.
+  parallelRows(l0.h, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z)
+      for (int x = 0; x < l0.w; ++x)
+        l0.max[size_t(z) * size_t(l0.w) + size_t(x)] =
+            std::max(std::max(hf.at(x, z), hf.at(x + 1, z)), std::max(hf.at(x, z + 1), hf.at(x + 1, z + 1)));
+  });
   m.levels.push_back(std::move(l0));
   while (m.levels.back().w > 1 || m.levels.back().h > 1) {
     const MaxMipmap::Level& p = m.levels.back();
@@ -75,11 +81,13 @@ MaxMipmap buildMaxMipmap(const Heightfield& hf) {
     l.w = (p.w + 1) / 2;
     l.h = (p.h + 1) / 2;
     l.max.assign(size_t(l.w) * size_t(l.h), -std::numeric_limits<float>::infinity());
-    for (int z = 0; z < p.h; ++z)
-      for (int x = 0; x < p.w; ++x) {
-        float& v = l.max[size_t(z / 2) * size_t(l.w) + size_t(x / 2)];
-        v = std::max(v, p.max[size_t(z) * size_t(p.w) + size_t(x)]);
-      }
+    parallelRows(l.h, [&](int r0, int r1) {  // output rows r0 .. r1 - 1: input rows 2 r0 .. 2 r1 - 1
+      for (int z = 2 * r0; z < std::min(2 * r1, p.h); ++z)
+        for (int x = 0; x < p.w; ++x) {
+          float& v = l.max[size_t(z / 2) * size_t(l.w) + size_t(x / 2)];
+          v = std::max(v, p.max[size_t(z) * size_t(p.w) + size_t(x)]);
+        }
+    });
     m.levels.push_back(std::move(l));
   }
   return m;
@@ -161,7 +169,8 @@ void pixelRay(const glm::dmat4& inv, int px, int py, int width, int height, glm:
 RgbaImage raycastImage(const Heightfield& hf, const CameraPose& pose, int width, int height,
                        std::vector<float>* distance, int threads) {
   const MaxMipmap mip = buildMaxMipmap(hf);
-  const NormalMap normals = computeNormalMap(hf);
+  const std::shared_ptr<const NormalMap> shared = sharedNormalMap(hf);  // the kept terrain's, computed once
+  const NormalMap& normals = *shared;
   CameraMatrices cam = cameraMatrices(pose, float(width) / float(height), hf.extent);
   const glm::dmat4 inv = glm::inverse(glm::dmat4(cam.proj) * glm::dmat4(cam.view));
   RgbaImage img{width, height, std::vector<uint8_t>(size_t(width) * size_t(height) * 4)};
