@@ -77,7 +77,8 @@ void Heightfield::updateRange() {
 namespace {
 
 constexpr int kMinSize = 2;
-constexpr int kMaxSize = 32768;         // the largest maxImageDimension2D of current GPUs (config.cpp's bound)
+constexpr int kMaxSize = 32768;         // one image: the largest maxImageDimension2D of current GPUs
+constexpr int kMaxPagedSize = 262145;   // in pages ("page"): config.cpp's bound
 constexpr int kOctaves = 8;             // the default ("detail": "fixed"): the finest cell is 1/192 of the extent
 constexpr int kMaxOctaves = 16;         // "detail": "resolution" needs 13 at 16385^2, 14 at 32768^2
 constexpr int kRidgedOctaves = 5;       // octaves 1..5; octave 0 is uplift, the rest fBm detail
@@ -178,9 +179,11 @@ void requireFinite(float v, const char* what, bool allowZero) {
 }  // namespace
 
 Heightfield makeProcedural(const TerrainSpec& spec) {
-  if (spec.size < kMinSize || spec.size > kMaxSize)
+  const int maxSize = spec.page > 0 ? kMaxPagedSize : kMaxSize;
+  if (spec.size < kMinSize || spec.size > maxSize)
     throw InputError("terrain: procedural size " + std::to_string(spec.size) + " is outside [" +
-                     std::to_string(kMinSize) + ", " + std::to_string(kMaxSize) + "]");
+                     std::to_string(kMinSize) + ", " + std::to_string(maxSize) + "]" +
+                     (spec.page > 0 ? "" : " (a terrain in pages, \"page\", may be larger)"));
   requireFinite(spec.extent, "extent", false);
   requireFinite(spec.heightScale, "heightScale", true);  // 0 gives a flat plane, a valid baseline
   if (spec.heightScale > kMaxAbsHeight)
