@@ -58,7 +58,8 @@ static std::string referenceKey(const Case& c) {
 }
 
 // Load-time stage costs per terrain label (run.json costs.terrains), from this invocation's cases:
-// the latest case's figures, since every case loads its terrain and builds its renderer anew.
+// each stage's largest figure, which is the case that did the work: a kept terrain's later cases
+// take its heights and normal map from the cache, and a cached scheme table is a lookup.
 struct TerrainStageCosts {
   double loadS = -1, pagesS = -1, normalMapS = -1;
   std::map<std::string, double> preprocessS;  // by scheme
@@ -69,12 +70,14 @@ void clearStageCosts() {
   gStageCosts.clear();
 }
 
-static void recordStageCosts(const Case& c, double loadS, const Renderer::SetupCosts& setup) {
-  TerrainStageCosts& t = gStageCosts[c.terrainLabel];
-  t.loadS = loadS;
-  t.pagesS = setup.pagesS;
-  t.normalMapS = setup.normalMapS;
-  t.preprocessS[c.scheme] = setup.preprocessS;
+void recordStageCosts(const std::string& terrain, const std::string& scheme, double loadS, double pagesS,
+                      double normalMapS, double preprocessS) {
+  TerrainStageCosts& t = gStageCosts[terrain];
+  t.loadS = std::max(t.loadS, loadS);
+  t.pagesS = std::max(t.pagesS, pagesS);
+  t.normalMapS = std::max(t.normalMapS, normalMapS);
+  auto [at, fresh] = t.preprocessS.emplace(scheme, preprocessS);
+  if (!fresh) at->second = std::max(at->second, preprocessS);
 }
 
 json stageCostsJson() {
@@ -112,7 +115,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   result.params = params;
   Renderer renderer(ctx, terrain, settings);
   renderer.setScheme(*scheme, params);
-  recordStageCosts(c, loadS, renderer.setupCosts());
+  const Renderer::SetupCosts& setup = renderer.setupCosts();
+  recordStageCosts(c.terrainLabel, c.scheme, loadS, setup.pagesS, setup.normalMapS, setup.preprocessS);
   int frames = frameCount(path, config.fps);
   if (config.maxFrames > 0) frames = std::min(frames, config.maxFrames);
   auto pose = [&](int f) { return samplePose(path, config.fps, f, terrain); };

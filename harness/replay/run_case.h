@@ -31,8 +31,10 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
                    CaseProgress* progress, ReferenceCache& refs, const std::string& searchCheckpoint = "");
 
 // Load-time stage costs per terrain label of the cases run since clearStageCosts (run.json
-// costs.terrains).
+// costs.terrains): each stage's largest figure over the cases, the one that did the work.
 void clearStageCosts();
+void recordStageCosts(const std::string& terrain, const std::string& scheme, double loadS, double pagesS,
+                      double normalMapS, double preprocessS);
 nlohmann::json stageCostsJson();
 
 RenderMode parseRenderMode(const std::string& name);
