@@ -108,25 +108,29 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
                          " bytes of heights exceed the device's maxStorageBufferRange (" +
                          std::to_string(ctx.props.limits.maxStorageBufferRange) + ")");
 
-  std::vector<float> allLevels;
+  std::vector<BufferPart> mipLevels;  // every level, level 0 first; offsets in floats
+  uint32_t mipFloats = 0;
   for (const MaxMipmap::Level& l : mip.levels) {
-    levelTable_.insert(levelTable_.end(), {uint32_t(allLevels.size()), uint32_t(l.w), uint32_t(l.h), 0u});
-    allLevels.insert(allLevels.end(), l.max.begin(), l.max.end());
+    levelTable_.insert(levelTable_.end(), {mipFloats, uint32_t(l.w), uint32_t(l.h), 0u});
+    mipLevels.push_back({l.max.data(), VkDeviceSize(l.max.size()) * sizeof(float)});
+    mipFloats += uint32_t(l.max.size());
   }
   // The renderer's map where the terrain is the kept one (terrain/terrain_cache.h): seconds at 16385^2.
   const std::shared_ptr<const NormalMap> shared = sharedNormalMap(hf);
   const NormalMap& normals = *shared;
   const MemoryTag measure{GpuResource::Measure};
   heights_ = createBufferWithData(ctx, heights.data(), heightBytes, kStorage, measure);
-  mip_ = createBufferWithData(ctx, allLevels.data(), VkDeviceSize(allLevels.size()) * sizeof(float), kStorage, measure);
-  std::vector<uint16_t> allNormals;  // every level, level 0 first; offsets in uints (two halves each)
+  mip_ = createBufferWithParts(ctx, mipLevels, kStorage, measure);
+  std::vector<BufferPart> normalLevels;  // every level, level 0 first; offsets in uints (two halves each)
+  size_t normalHalves = 0;
   for (int k = 0; k < normals.levels(); ++k) {
-    normalTable_.insert(normalTable_.end(), {uint32_t(allNormals.size() / 2), uint32_t(normals.levelWidth(k)),
+    const std::vector<uint16_t>& texels = normals.levelTexels(k);
+    normalTable_.insert(normalTable_.end(), {uint32_t(normalHalves / 2), uint32_t(normals.levelWidth(k)),
                                              uint32_t(normals.levelHeight(k)), 0u});
-    allNormals.insert(allNormals.end(), normals.levelTexels(k).begin(), normals.levelTexels(k).end());
+    normalLevels.push_back({texels.data(), VkDeviceSize(texels.size()) * sizeof(uint16_t)});
+    normalHalves += texels.size();
   }
-  normals_ = createBufferWithData(ctx, allNormals.data(), VkDeviceSize(allNormals.size()) * sizeof(uint16_t), kStorage,
-                                  measure);
+  normals_ = createBufferWithParts(ctx, normalLevels, kStorage, measure);
   params_ = createBuffer(ctx, sizeof(Params<double>), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, measure);
   unusedDistance_ = createBuffer(ctx, sizeof(float), kStorage, false, measure);
 

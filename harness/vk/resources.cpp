@@ -70,8 +70,19 @@ Buffer createReadBackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags 
 
 Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
                             MemoryTag tag) {
+  return createBufferWithParts(ctx, {{data, size}}, usage, tag);
+}
+
+Buffer createBufferWithParts(Context& ctx, const std::vector<BufferPart>& parts, VkBufferUsageFlags usage,
+                             MemoryTag tag) {
+  VkDeviceSize size = 0;
+  for (const BufferPart& p : parts) size += p.bytes;
   Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging, tag.account});
-  std::memcpy(staging.mapped, data, size_t(size));
+  VkDeviceSize at = 0;
+  for (const BufferPart& p : parts) {
+    if (p.bytes) std::memcpy(static_cast<char*>(staging.mapped) + at, p.data, size_t(p.bytes));
+    at += p.bytes;
+  }
   Buffer b = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, tag);
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, 0, size};

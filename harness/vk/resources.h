@@ -46,6 +46,14 @@ Buffer createReadBackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags 
 // Device-local buffer filled through a staging copy (the staging charged as Staging to tag's account).
 Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
                             MemoryTag tag = {});
+// The same from parts laid end to end, copied straight into the staging buffer: no host array of
+// the whole (the ray cast's pyramid and normal map levels, gigabytes at 16385^2).
+struct BufferPart {
+  const void* data;
+  VkDeviceSize bytes;
+};
+Buffer createBufferWithParts(Context& ctx, const std::vector<BufferPart>& parts, VkBufferUsageFlags usage,
+                             MemoryTag tag = {});
 
 // mipLevels > 1: a full or partial mip chain; the view covers every level.
 Image createImage(Context& ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
