@@ -9,7 +9,8 @@
 
 namespace lb {
 
-ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
+// convergeLod without the state's hash.
+static ConvergeResult converge(Renderer& r, const CameraPose& pose) {
   LodState& lod = r.lodState();
   lod.reset();
   ConvergeResult out;
@@ -27,6 +28,12 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
     }
   }
   out.instances = last;
+  return out;
+}
+
+ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
+  ConvergeResult out = converge(r, pose);
+  LodState& lod = r.lodState();
   std::vector<uint32_t> state = lod.read();
   const GpuLod& g = lod.gpuLod();
   if (g.treeWordCount > 0 && size_t(g.treeFirstWord) + g.treeWordCount <= state.size()) {
@@ -39,11 +46,10 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose) {
   return out;
 }
 
-ConvergeResult startLod(Renderer& r, const CameraPose& first, int warmup) {
-  ConvergeResult c = convergeLod(r, first);
+void startLod(Renderer& r, const CameraPose& first, int warmup) {
+  converge(r, first);
   for (int i = 0; i < warmup; ++i) r.lodState().update(first);
   r.lodState().snapshot();
-  return c;
 }
 
 nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts) {

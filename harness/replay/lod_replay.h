@@ -36,8 +36,9 @@ ConvergeResult convergeLod(Renderer& r, const CameraPose& pose);
 
 // S0 as a case's timed frames start from it: converged at the path's first pose, then `warmup`
 // updates there (the warm-up frames'), snapshotted. For the callers that rebuild a case's states
-// outside its sweep (matched searches, `lodbench render`).
-ConvergeResult startLod(Renderer& r, const CameraPose& first, int warmup);
+// outside its sweep (matched searches, `lodbench render`): they record no convergence, so the state
+// is neither read back nor hashed (16 MiB and a SHA-256 of 4 MiB for cbt at depth 25, every trial).
+void startLod(Renderer& r, const CameraPose& first, int warmup);
 
 // The case's state record: converge_updates, lod_converged and the scheme's facts (GpuLod::facts).
 nlohmann::json lodStateJson(const ConvergeResult& c, const std::vector<std::pair<std::string, double>>& facts);
