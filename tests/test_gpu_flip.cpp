@@ -24,7 +24,7 @@ void everyShippedPath(const Heightfield& hf, const char* label, bool allFrames) 
   const int w = 160, h = 90;
   Renderer r(lbtest::gpu(), hf, {w, h, 16});
   r.setScheme(*findScheme("sphere"), {});
-  MeasureGpu g(lbtest::gpu(), hf, w, h);
+  MeasureGpu g(lbtest::gpu(), w, h);
   GpuFlip flip(lbtest::gpu(), w, h, kFlipDefaultPpd);
   double worst = 0, worstMean = 0;
   int frames = 0;
@@ -34,7 +34,7 @@ void everyShippedPath(const Heightfield& hf, const char* label, bool allFrames) 
     for (int f : allFrames ? std::vector<int>{0, n / 2, n - 1} : std::vector<int>{n / 2}) {
       const CameraPose pose = samplePose(path, 30, f, hf);
       r.renderInto(pose, pose, RenderMode::Shaded, &g.shaded);
-      g.castTruth(pose);
+      g.castTruth(hf, pose);
       const std::vector<float> gpuMap = g.readFloats(flip.run(g.truth, g.shaded));
       const std::vector<float> cpuMap = flipMap(asSeen(g.readImage(g.truth)), asSeen(g.readImage(g.shaded)));
       ASSERT_EQ(gpuMap.size(), cpuMap.size());

@@ -17,10 +17,13 @@
 #include "dem_crop.h"
 #include "gpu_fixture.h"
 #include "metrics/raycast_shade.h"
+#include "render/renderer.h"
 #include "replay/measure.h"
 #include "replay/measure_gpu.h"
 #include "replay/raycast_cache.h"
 #include "results/run_dir.h"
+#include "schemes/registry.h"
+#include "shaders/raycast_params.h"
 #include "sweep/runner.h"
 #include "terrain/heightfield.h"
 
@@ -171,7 +174,7 @@ TEST_F(MeasureGpuTest, CrackCandidatesSendAFrameToTheFloodFill) {
     }
   ASSERT_EQ(punched, 3) << "premise: terrain all around the hole";
   MeasureGpu& g = refs.gpu(lbtest::gpu(), hf, "t", 160, 90);
-  g.castTruth(pose);
+  g.castTruth(hf, pose);
   const GpuImageStats s = g.reduce.compare(g.reduce.upload(holed), g.truth, 16, false);
   const GpuImageStats before = g.reduce.compare(g.shaded, g.truth, 16, false);
   EXPECT_EQ(s.crackCandidates, before.crackCandidates + 3);
@@ -211,4 +214,37 @@ TEST_F(MeasureGpuTest, RunAndCaseRecordsCarryTheCostOfEachPass) {
     const nlohmann::json cj = readCaseFiles(run.string()).at(0).doc["measure_costs_ms"];
     EXPECT_EQ(cj, rj) << "one case: its record's costs are the run's";
   }
+}
+
+// A terrain past the GPU ray cast's limits (here a strip one cell wider than its shader takes, in
+// pages) has no truth on the GPU path: the histogram and error passes measure it, the passes that
+// compare with the truth are null with the reason, and the frame is not lost.
+TEST_F(MeasureGpuTest, ATerrainPastTheRayCastMeasuresWhatNeedsNoTruth) {
+  Heightfield hf;
+  hf.width = LB_RAYCAST_MAX_CELLS + 2;
+  hf.height = 3;
+  hf.extent = float(hf.width - 1);
+  hf.page = 1023;
+  hf.h.resize(size_t(hf.width) * size_t(hf.height));
+  for (size_t i = 0; i < hf.h.size(); ++i) hf.h[i] = float(i % 97) * 0.05f;
+  hf.updateRange();
+  Renderer r(lbtest::gpu(), hf, {160, 90, 4});
+  r.setScheme(*findScheme("uniform"), {});
+  MeasureSpec spec;
+  spec.every = 1;
+  spec.passes = {"histogram", "error", "image", "cracks"};
+  spec.compute = "gpu";
+  ReferenceCache refs;
+  const CameraPose pose = lbtest::poseAt({100, 40, -30}, {400, 0, 1});
+  const FrameMetrics m =
+      measureFrame(lbtest::gpu(), r, *findScheme("uniform"), r.params(), hf, "strip", spec, refs, 0, pose, pose);
+  const auto v = valuesOf(m);
+  EXPECT_GT(v.at("hist_0") + v.at("hist_1") + v.at("hist_2") + v.at("hist_3"), 0);  // triangles were counted
+  EXPECT_TRUE(std::isfinite(v.at("err_p95_px")));
+  EXPECT_TRUE(std::isnan(v.at("img_psnr_db")));
+  EXPECT_TRUE(std::isnan(v.at("cracks_pixels")));
+  EXPECT_TRUE(std::isfinite(v.at("cracks_analytic")));
+  ASSERT_TRUE(m.unavailable.count("image"));
+  EXPECT_NE(m.unavailable.at("image").find("ray cast"), std::string::npos) << m.unavailable.at("image");
+  EXPECT_TRUE(m.unavailable.count("cracks_pixels"));
 }

@@ -148,10 +148,25 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
   // Coverage rides on the truth the image or cracks pass needs (metrics/coverage.h).
   // The GPU path's comparison also counts coverage and crack candidates, so it runs for either pass.
   GpuImageStats gs;
-  if (spec.on("image") || spec.on("cracks")) {
+  // A terrain past the GPU ray cast's limits has no truth on that path: the passes that compare
+  // with it are null with the reason, the frame's other passes stand.
+  std::string noTruth;
+  if (g && (spec.on("image") || spec.on("cracks"))) try {
+      g->castTruth(terrain, current);
+    } catch (const FeatureMissing& e) {
+      noTruth = e.what();
+    }
+  if (!noTruth.empty()) {
+    lap("ray_cast");
+    for (const char* pass : {"image", "cracks"})
+      if (spec.on(pass)) m.unavailable[std::string(pass) == "cracks" ? "cracks_pixels" : pass] = noTruth;
+    for (const char* k : {"coverage_missing_px", "coverage_extra_px", "coverage_truth_px"}) set(k, kNan);
+    if (spec.on("image"))
+      for (const char* k : {"img_psnr_db", "img_ssim", "img_mad", "img_frac_over", "flip_mean", "flip_p95"})
+        set(k, kNan);
+  } else if (spec.on("image") || spec.on("cracks")) {
     Coverage cov;
     if (g) {
-      g->castTruth(current);
       lap("ray_cast");
       gs = g->reduce.compare(g->shaded, g->truth, spec.diffThreshold, spec.on("image"));
       cov = {gs.coverageMissing, gs.coverageExtra, gs.truthTerrain};
@@ -169,7 +184,7 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("coverage_extra_px", double(cov.extra));
     set("coverage_truth_px", double(cov.truthTerrain));
   }
-  if (spec.on("image")) {
+  if (spec.on("image") && noTruth.empty()) {
     ImageError ie = g ? gs.e : compareImages(m.shaded, m.reference, spec.diffThreshold);
     set("img_psnr_db", ie.psnrDb);
     set("img_ssim", ie.ssim);
@@ -192,6 +207,8 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
     set("flip_p95", fs.p95);
     lap("flip");
   }
+  // Crack pixels compare with the truth; analytic cracks read the geometry alone.
+  const double crackPixels = noTruth.empty() && spec.on("cracks") ? double(cracks(m, g ? &gs : nullptr, rs)) : kNan;
   if (spec.on("cracks") && instanced) {
     // The drawn mesh, captured by the histogram pass (run for it here when the histogram is off).
     double analytic = kNan;
@@ -203,10 +220,10 @@ FrameMetrics measureFrame(Context& ctx, Renderer& r, const Scheme& scheme, const
       m.unavailable["cracks_analytic"] = e.what();
     }
     set("cracks_analytic", analytic);
-    set("cracks_pixels", double(cracks(m, g ? &gs : nullptr, rs)));
+    set("cracks_pixels", crackPixels);
   } else if (spec.on("cracks")) {
     set("cracks_analytic", double(analyticCracks(scheme, params, terrain, rs.grid, levels)));
-    set("cracks_pixels", double(cracks(m, g ? &gs : nullptr, rs)));
+    set("cracks_pixels", crackPixels);
   }
   lap("cracks");
   if (spec.on("popping")) {

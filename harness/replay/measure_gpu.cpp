@@ -21,9 +21,8 @@ static Buffer frameBuffer(Context& ctx, int width, int height) {
       {GpuResource::Measure});
 }
 
-MeasureGpu::MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int height)
-    : raycast(ctx, terrain),
-      reduce(ctx, width, height),
+MeasureGpu::MeasureGpu(Context& ctx, int width, int height)
+    : reduce(ctx, width, height),
       shaded(frameBuffer(ctx, width, height)),
       truth(frameBuffer(ctx, width, height)),
       error(frameBuffer(ctx, width, height)),
@@ -37,11 +36,12 @@ MeasureGpu::MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int 
                           {GpuResource::Measure});
 }
 
-void MeasureGpu::castTruth(const CameraPose& pose) {
+void MeasureGpu::castTruth(const Heightfield& terrain, const CameraPose& pose) {
   if (haveTruth_ && pose.eye == truthPose_.eye && pose.target == truthPose_.target && pose.fovDeg == truthPose_.fovDeg)
     return;
   haveTruth_ = false;  // stays false if the ray cast throws
-  raycast.run(pose, width_, height_, truth, nullptr);
+  if (!raycast_) raycast_ = std::make_unique<GpuRaycast>(ctx_, terrain);
+  raycast_->run(pose, width_, height_, truth, nullptr);
   truthPose_ = pose;
   haveTruth_ = true;
 }

@@ -27,15 +27,17 @@ bool measureOnGpu(const MeasureSpec& spec, const Context& ctx);
 // One per terrain and resolution, kept across a sweep's cases (ReferenceCache::gpu).
 class MeasureGpu {
  public:
-  MeasureGpu(Context& ctx, const Heightfield& terrain, int width, int height);
-  // The ray-cast truth of `pose` into `truth` (cast again only when the pose changes).
-  void castTruth(const CameraPose& pose);
+  MeasureGpu(Context& ctx, int width, int height);
+  // The ray-cast truth of `pose` into `truth` (cast again only when the pose changes). The ray cast
+  // is made on first use, so passes that never read the truth (histogram, error) measure a terrain
+  // past its limits; there it throws FeatureMissing, for the caller to report. `terrain`: the
+  // case's own, the same heights as the constructor's (the cache keys on them).
+  void castTruth(const Heightfield& terrain, const CameraPose& pose);
   RgbaImage readImage(const Buffer& b);
   std::vector<float> readFloats(const Buffer& b);
   // FLIP's passes at viewing distance `ppd` (made on first use, again for another distance).
   GpuFlip& flip(double ppd);
 
-  GpuRaycast raycast;
   GpuReduce reduce;
   // width * height words each; STORAGE for the passes, TRANSFER_DST for the renderer's copy,
   // TRANSFER_SRC for read-backs.
@@ -43,6 +45,7 @@ class MeasureGpu {
 
  private:
   Context& ctx_;
+  std::unique_ptr<GpuRaycast> raycast_;
   int width_, height_;
   bool haveTruth_ = false;
   CameraPose truthPose_;

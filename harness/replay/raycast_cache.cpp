@@ -101,7 +101,7 @@ MeasureGpu& ReferenceCache::gpu(Context& ctx, const Heightfield& terrain, const 
       << height;
   if (!gpu_ || gpuKey_ != key.str()) {
     gpu_.reset();  // the old buffers go before the new ones are made
-    gpu_ = std::make_unique<MeasureGpu>(ctx, terrain, width, height);
+    gpu_ = std::make_unique<MeasureGpu>(ctx, width, height);
     gpuKey_ = key.str();
   }
   return *gpu_;
