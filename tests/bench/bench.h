@@ -3,6 +3,7 @@
 // bench_main.cpp registers every function below from one table, and BM_SchemeUpdate once per
 // entry of the scheme registry.
 #include <benchmark/benchmark.h>
+#include <vulkan/vulkan.h>
 
 #include <string>
 
@@ -32,5 +33,13 @@ void benchBootstrap(benchmark::State& state, int n);       // its ratio interval
 // its CPU oracle raycastImage on every hardware thread, on the same frame.
 void benchGpuRaycast(benchmark::State& state, int width, int height);
 void benchCpuRaycast(benchmark::State& state, int width, int height);
+// A stateful LOD's per-frame measurement work on cbt at depth 25, 1920x1080 (bench_settle.cpp): one
+// update; its state set aside and put back on the device (keep, putBack) or through the host (read,
+// load); an error map read back. And a memcpy out of a mapped buffer of `bytes`, made by createBuffer
+// (host-visible storage) or by createReadBackBuffer.
+void benchCbtUpdate(benchmark::State& state);
+void benchCbtStateAside(benchmark::State& state, bool onDevice);
+void benchCbtErrorMap(benchmark::State& state);
+void benchHostRead(benchmark::State& state, VkDeviceSize bytes, bool readBack);
 
 }  // namespace lb

@@ -40,6 +40,12 @@ std::vector<Entry> table() {
       {"BM_WriteCase/300", [](auto& s) { benchWriteCase(s, 300); }},
       {"BM_GpuRaycast1080p", [](auto& s) { benchGpuRaycast(s, 1920, 1080); }},
       {"BM_CpuRaycast1080p", [](auto& s) { benchCpuRaycast(s, 1920, 1080); }},
+      {"BM_CbtUpdate/d25", [](auto& s) { benchCbtUpdate(s); }},
+      {"BM_CbtStateAside/d25/host", [](auto& s) { benchCbtStateAside(s, false); }},
+      {"BM_CbtStateAside/d25/device", [](auto& s) { benchCbtStateAside(s, true); }},
+      {"BM_CbtErrorMap1080p", [](auto& s) { benchCbtErrorMap(s); }},
+      {"BM_HostRead/8MiB/storage", [](auto& s) { benchHostRead(s, 8u << 20, false); }},
+      {"BM_HostRead/8MiB/readback", [](auto& s) { benchHostRead(s, 8u << 20, true); }},
   };
   // Every scheme in the registry: a new scheme gets its benchmark without an edit here.
   for (const Scheme* scheme : allSchemes())
