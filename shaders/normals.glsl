@@ -1,4 +1,4 @@
-// The raster's normal map (docs/tiled-heightfield.md): every level in pages of (N + 1)^2 texels in
+// The raster's normal map past one image (docs/tiled-heightfield.md): every level in pages of (N + 1)^2 texels in
 // RG16F 2D array images, numbered level after level (terrain/normal_page_layout.h), read through
 // the level table and filtered by normal_sample.glsl, the ray cast's arithmetic. A bilinear read's
 // four texels are one page's, so the page size changes where texels are stored, never what a pixel reads.
@@ -6,7 +6,7 @@
 #define LB_NORMALS_GLSL
 #include "shared.h"
 
-layout(set = 0, binding = LB_BINDING_NORMAL) uniform sampler2DArray normalPages[LB_NORMAL_ARRAYS];
+layout(set = 0, binding = LB_BINDING_NORMAL_PAGES) uniform sampler2DArray normalPages[LB_NORMAL_ARRAYS];
 layout(constant_id = LB_SPEC_NORMAL_ARRAYS) const int kNormalArrays = LB_NORMAL_ARRAYS;
 layout(std430, set = 0, binding = LB_BINDING_NORMAL_TABLE) readonly buffer NormalTable {
   ivec4 header;   // x: levels; y: N, texels a page holds of its own a side; z: layers an array holds

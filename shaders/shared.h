@@ -10,7 +10,7 @@
 #define LB_BINDING_SCHEME_BUF 5     // scheme storage buffer (e.g. tile adjacency)
 #define LB_BINDING_HISTOGRAM 7      // triangle-size histogram (measurement pass)
 #define LB_BINDING_SCHEME_IMAGE 6   // compute preprocessing only: the scheme texture as a storage image
-#define LB_BINDING_NORMAL 8         // normal map pages: LB_NORMAL_ARRAYS RG16F 2D array images (normals.glsl)
+#define LB_BINDING_NORMAL 8         // terrain normal map, RG16F gradients, all mips (terrain/normal_map.h)
 #define LB_BINDING_INSTANCES 9      // instanced-grid path: InstanceRecord per instance (render/instanced.h)
 #define LB_BINDING_MESH 10          // measurement pass: captured triangles of the instanced path (analytic cracks)
 #define LB_BINDING_LOD_STATE 11     // GPU-indirect path: the LOD state the compute passes keep across frames
@@ -18,6 +18,7 @@
 #define LB_BINDING_MESH_TABLE 13    // mesh path: the tessellation patterns' strip table (tess_piece.h)
 #define LB_BINDING_HEIGHT_TABLE 14  // heightfield pages: HeightTableHeader, then one entry per page
 #define LB_BINDING_NORMAL_TABLE 15  // normal map pages: a header, then one ivec4 per level (normals.glsl)
+#define LB_BINDING_NORMAL_PAGES 16  // normal map pages: LB_NORMAL_ARRAYS RG16F 2D array images (normals.glsl)
 
 // The heightfield's pages (terrain/page_layout.h, docs/tiled-heightfield.md): a descriptor array of
 // this many page arrays (those a terrain does not need repeat the first), and per page one table

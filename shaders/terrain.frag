@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Identical shading for every scheme: per-pixel normals from the terrain's normal map (filtered at
-// the level of the pixel's footprint, footprint.h, from its pages: normals.glsl), one directional light.
+// the level of the pixel's footprint, footprint.h), one directional light. A map that fits one image
+// is read by the sampler's trilinear filter; one past it from its pages (normals.glsl).
 #include "common.glsl"
 #include "footprint.h"
 #include "normals.glsl"
@@ -12,6 +13,9 @@ layout(constant_id = 0) const int kMode = LB_MODE_SHADED;
 layout(constant_id = 1) const bool kHeightNormals = false;
 // Testing only (RenderSettings::testMipZeroShading): every pixel shaded from level 0.
 layout(constant_id = 2) const bool kMipZero = false;
+// The map is in pages (render/normal_pages.h): past one image, or pages asked for in a test.
+layout(constant_id = 3) const bool kNormalPaged = false;
+layout(set = 0, binding = LB_BINDING_NORMAL) uniform sampler2D normalMap;
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in float inLevel;
 layout(location = 0) out vec4 outColor;
@@ -29,7 +33,9 @@ vec3 mapNormal(vec3 world) {
   vec2 size = frame.terrain.zw;
   vec2 t = clamp((world.xz - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * (size - 1.0);
   float level = kMipZero ? 0.0 : shadingLevel(world, frame.shading.xyz, frame.shading.w, frame.terrain.x, int(size.x), int(size.y));
-  return nsMapNormal(t, level, normalLevels());
+  if (kNormalPaged) return nsMapNormal(t, level, normalLevels());
+  vec2 g = textureLod(normalMap, (t + 0.5) / size, level).rg;
+  return normalize(vec3(g.x, 1.0, g.y));
 }
 
 // The screen-space error of a drawn pixel: the on-screen length of the vertical segment from the

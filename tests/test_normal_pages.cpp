@@ -2,12 +2,13 @@
 // NormalPageLayout.* check on the host that a bilinear read's four texels always lie in the page
 // the shaders choose and that a page stores the level's texels (the edge repeated past it);
 // NormalPagesGpu.* draw a terrain with its map in pages of 5 and 37 texels spread over several arrays
-// and require the shaded images bit for bit equal to the map in the pages its size chooses, and a
-// planted defect (pages one texel off) to change them.
+// and require the shaded images bit for bit equal to pages of 64, a planted defect (pages one texel
+// off) to change them, and the one image the map fits (the sampler's filter) to shade within a level.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include "config/config.h"
@@ -99,7 +100,7 @@ TEST(NormalPageLayout, ChoosesThePageThatStoresLeastAndFitsTheArrays) {
 
 class NormalPagesGpu : public lbtest::GpuTest {};
 
-TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAsTheChosenPages) {
+TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAlike) {
   const Heightfield hf = terrain(257, 193);
   // Over the whole terrain, from far (coarse levels) and near (level 0 across page borders).
   const std::vector<CameraPose> poses = {lbtest::poseAt({-300, 700, -300}, {500, 0, 380}),
@@ -108,10 +109,10 @@ TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAsTheChosenPages) {
   base.width = 160;
   base.height = 90;
   base.grid = 8;
-  Renderer chosen(lbtest::gpu(), hf, base);
   const Scheme& uniform = *findScheme("uniform");
-  chosen.setScheme(uniform, {});
-  auto shaded = [&](Renderer& r) {
+  auto shaded = [&](const RenderSettings& s) {
+    Renderer r(lbtest::gpu(), hf, s);
+    r.setScheme(uniform, {});
     std::vector<uint8_t> out;
     for (const CameraPose& p : poses) {
       const std::vector<uint8_t> px = r.renderImage(p, p, RenderMode::Shaded);
@@ -119,21 +120,28 @@ TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAsTheChosenPages) {
     }
     return out;
   };
-  const std::vector<uint8_t> want = shaded(chosen);
+  RenderSettings paged64 = base;
+  paged64.testNormalPageCells = 64;
+  const std::vector<uint8_t> want = shaded(paged64);
   for (int cells : {5, 37}) {
     RenderSettings s = base;
     s.testNormalPageCells = cells;
     s.testNormalPageLayers = cells == 5 ? 512 : 16;  // several arrays, at most the 8 bound
     NormalPages pages = createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}, cells, s.testNormalPageLayers);
+    EXPECT_TRUE(pages.paged);
     EXPECT_GT(pages.arrays.size(), 1u) << cells;
-    Renderer r(lbtest::gpu(), hf, s);
-    r.setScheme(uniform, {});
-    EXPECT_TRUE(shaded(r) == want) << "pages of " << cells << " texels shade differently";
+    EXPECT_TRUE(shaded(s) == want) << "pages of " << cells << " texels shade differently";
     s.testNormalPageDefect = true;
-    Renderer bad(lbtest::gpu(), hf, s);
-    bad.setScheme(uniform, {});
-    EXPECT_FALSE(shaded(bad) == want) << "pages of " << cells << ": the planted defect went unseen";
+    EXPECT_FALSE(shaded(s) == want) << "pages of " << cells << ": the planted defect went unseen";
   }
+  // The one image the map fits, filtered by the sampler (8-bit weights where the pages' shader
+  // filter has float ones): the same shading up to a level of 255.
+  EXPECT_FALSE(createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}).paged);
+  const std::vector<uint8_t> single = shaded(base);
+  ASSERT_EQ(single.size(), want.size());
+  int worst = 0;
+  for (size_t i = 0; i < single.size(); ++i) worst = std::max(worst, std::abs(int(single[i]) - int(want[i])));
+  EXPECT_LE(worst, 1);
 }
 
 TEST_F(NormalPagesGpu, MoreArraysThanTheShadersBindAreRefused) {

@@ -36,10 +36,48 @@ NormalPagesFit normalPagesFit(int width, int height, uint32_t maxImageArrayLayer
   return f;
 }
 
+bool normalMapFitsOneImage(int width, int height, uint32_t maxImageDimension2D, uint64_t maxAllocationBytes) {
+  // Level 0's bytes and the chain's third, as the driver lays out a mip-mapped image at most.
+  const uint64_t level0 = uint64_t(width) * uint64_t(height) * 4;
+  return uint32_t(std::max(width, height)) <= maxImageDimension2D &&
+         level0 + level0 / 3 + (1u << 20) <= maxAllocationBytes;
+}
+
+// A 1 x 1 image or one-layer array of the map's format, for the bindings the shader does not read.
+static Image standIn(Context& ctx, bool array, MemoryTag tag) {
+  const uint16_t texel[2] = {0, 0};
+  Image img = array ? createImageArray(ctx, 1, 1, 1, VK_FORMAT_R16G16_SFLOAT,
+                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, tag)
+                    : createImage(ctx, 1, 1, VK_FORMAT_R16G16_SFLOAT,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                  VK_IMAGE_ASPECT_COLOR_BIT, tag, 1);
+  uploadImageLevels(ctx, img, {{texel, sizeof texel}});
+  return img;
+}
+
 NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, int cells, uint32_t maxLayers,
                               NormalPageDefect defect) {
   NormalPages out;
   const DeviceLimits limits = deviceLimits(ctx.physicalDevice);
+  out.paged = cells > 0 || !normalMapFitsOneImage(nm.width, nm.height, ctx.props.limits.maxImageDimension2D,
+                                                  limits.maxAllocationBytes);
+  if (!out.paged) {
+    out.image = createImage(ctx, uint32_t(nm.width), uint32_t(nm.height), VK_FORMAT_R16G16_SFLOAT,
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                            tag, uint32_t(nm.levels()));
+    std::vector<ImageLevelData> levels;
+    for (int k = 0; k < nm.levels(); ++k)
+      levels.push_back({nm.levelTexels(k).data(), nm.levelTexels(k).size() * sizeof(uint16_t)});
+    uploadImageLevels(ctx, out.image, levels);
+    // Trilinear over every level: terrain.frag chooses the level (textureLod), never the derivatives.
+    out.linear = createSampler(ctx, VK_FILTER_LINEAR, float(nm.levels() - 1));
+    out.arrays.push_back(standIn(ctx, true, tag));
+    const int32_t table[8] = {1, 1, 1, 0, 1, 1, 0, 1};
+    out.table = createBufferWithData(ctx, table, sizeof table, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tag);
+    return out;
+  }
+  out.image = standIn(ctx, false, tag);
+  out.linear = createSampler(ctx, VK_FILTER_LINEAR, 0.0f);
   const uint32_t maxArrayLayers = ctx.props.limits.maxImageArrayLayers;
   const NormalPageLayout l =
       layoutFor(nm.width, nm.height, cells, maxArrayLayers, limits.maxAllocationBytes, maxLayers);
@@ -77,12 +115,21 @@ NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, 
 }
 
 void writeNormalDescriptors(Context& ctx, VkDescriptorSet set, const NormalPages& pages, VkSampler sampler) {
-  writePageDescriptors(ctx, set, LB_BINDING_NORMAL, LB_NORMAL_ARRAYS, pages.arrays, LB_BINDING_NORMAL_TABLE,
+  writePageDescriptors(ctx, set, LB_BINDING_NORMAL_PAGES, LB_NORMAL_ARRAYS, pages.arrays, LB_BINDING_NORMAL_TABLE,
                        pages.table, sampler);
+  VkDescriptorImageInfo image{pages.linear.get(), pages.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = LB_BINDING_NORMAL;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = &image;
+  vkUpdateDescriptorSets(ctx.device, 1, &w, 0, nullptr);
 }
 
 std::vector<DescriptorBinding> normalBindings(VkShaderStageFlags stages) {
-  return {{LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, stages, LB_NORMAL_ARRAYS},
+  return {{LB_BINDING_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, stages},
+          {LB_BINDING_NORMAL_PAGES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, stages, LB_NORMAL_ARRAYS},
           {LB_BINDING_NORMAL_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages}};
 }
 

@@ -1,7 +1,11 @@
 #pragma once
-// The normal map on the device (docs/tiled-heightfield.md): every level in pages
-// (terrain/normal_page_layout.h) as layers of RG16F 2D array images, and the level table that
-// shaders/normals.glsl reads them through. Built once per terrain by the renderer.
+// The normal map on the device (docs/tiled-heightfield.md), built once per terrain by the renderer.
+// A map that fits one image is one RG16F image with every level, filtered by the sampler
+// (trilinear at the shader's level): the fastest read, one instruction. A map past one image (the
+// device's maxImageDimension2D or largest allocation) is every level in pages
+// (terrain/normal_page_layout.h) as layers of RG16F 2D array images behind a level table,
+// filtered in the shader (shaders/normals.glsl). The shader takes one or the other by a
+// specialization constant; the other's bindings hold 1 x 1 stand-ins.
 #include <vector>
 
 #include "terrain/normal_page_layout.h"
@@ -12,6 +16,9 @@ namespace lb {
 struct Context;
 
 struct NormalPages {
+  bool paged = false;
+  Image image;                   // !paged: the map, every level; paged: a stand-in
+  vk::Unique<VkSampler> linear;  // trilinear over the image's levels
   NormalPageLayout layout;
   uint32_t perArray = 1;      // layers an array holds
   std::vector<Image> arrays;  // up to LB_NORMAL_ARRAYS
@@ -22,8 +29,9 @@ struct NormalPages {
 // paging test (tests/test_normal_pages.cpp) must see.
 enum class NormalPageDefect { None, OriginOffByOne };
 
-// `cells` 0 lets normalPageLayout choose; `maxLayers` > 0 caps an array's layers (testing). Throws
-// FeatureMissing when the pages need more than LB_NORMAL_ARRAYS arrays.
+// Pages when the map does not fit one image or `cells` > 0 (testing: pages of that size);
+// `maxLayers` > 0 caps an array's layers (testing). Throws FeatureMissing when the pages need more
+// than LB_NORMAL_ARRAYS arrays.
 NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, int cells = 0, uint32_t maxLayers = 0,
                               NormalPageDefect defect = NormalPageDefect::None);
 // The pages' device bytes and array count for a width x height terrain on a device with these
@@ -36,10 +44,13 @@ struct NormalPagesFit {
 };
 NormalPagesFit normalPagesFit(int width, int height, uint32_t maxImageArrayLayers, uint64_t maxAllocationBytes);
 
-// Writes LB_BINDING_NORMAL (every element; those the map does not fill repeat the first array) and
-// LB_BINDING_NORMAL_TABLE of `set`.
+// Whether a width x height map fits one image of this device (its side and its bytes, every level).
+bool normalMapFitsOneImage(int width, int height, uint32_t maxImageDimension2D, uint64_t maxAllocationBytes);
+
+// Writes LB_BINDING_NORMAL, LB_BINDING_NORMAL_PAGES (every element; those the map does not fill
+// repeat the first array) and LB_BINDING_NORMAL_TABLE of `set`.
 void writeNormalDescriptors(Context& ctx, VkDescriptorSet set, const NormalPages& pages, VkSampler sampler);
-// The two bindings as createBindings takes them.
+// The three bindings as createBindings takes them.
 std::vector<DescriptorBinding> normalBindings(VkShaderStageFlags stages);
 
 }  // namespace lb

@@ -253,18 +253,19 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   const bool wire = mode == RenderMode::Wireframe;
   struct FragSpec {
     int mode;
-    VkBool32 heightNormals, mipZero;
-  } fragValues{int(mode), settings_.testHeightNormals, settings_.testMipZeroShading};
+    VkBool32 heightNormals, mipZero, normalPaged;
+  } fragValues{int(mode), settings_.testHeightNormals, settings_.testMipZeroShading, normals_.paged};
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
   // Paths with instances capture the drawn mesh in the histogram pass (analytic cracks).
   VkBool32 meshValue = g.meshCapture;
   VkSpecializationMapEntry meshEntry{2, 0, sizeof(VkBool32)};
   VkSpecializationInfo meshSpec{1, &meshEntry, sizeof(VkBool32), &meshValue};
-  VkSpecializationMapEntry fragEntries[3] = {{0, offsetof(FragSpec, mode), sizeof(int)},
+  VkSpecializationMapEntry fragEntries[4] = {{0, offsetof(FragSpec, mode), sizeof(int)},
                                              {1, offsetof(FragSpec, heightNormals), sizeof(VkBool32)},
-                                             {2, offsetof(FragSpec, mipZero), sizeof(VkBool32)}};
-  VkSpecializationInfo modeSpec{3, fragEntries, sizeof(FragSpec), &fragValues};
+                                             {2, offsetof(FragSpec, mipZero), sizeof(VkBool32)},
+                                             {3, offsetof(FragSpec, normalPaged), sizeof(VkBool32)}};
+  VkSpecializationInfo modeSpec{4, fragEntries, sizeof(FragSpec), &fragValues};
   VkSpecializationInfo captureSpec{1, &captureEntry, sizeof(VkBool32), &captureValue};
   // A mesh stage's histogram pass: constant 3 bins, constant 2 captures the mesh (as the geometry shader's).
   struct MeshSpec {
