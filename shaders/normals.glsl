@@ -16,11 +16,13 @@ normalTable;
 
 ivec2 nsLevelSize(int k) { return normalTable.level[k].xy; }
 
-#define LB_NORMAL_QUAD(j)                                                            \
-  g00 = texelFetch(normalPages[j], ivec3(a, layer), 0).rg;                           \
-  g10 = texelFetch(normalPages[j], ivec3(b.x, a.y, layer), 0).rg;                    \
-  g01 = texelFetch(normalPages[j], ivec3(a.x, b.y, layer), 0).rg;                    \
-  g11 = texelFetch(normalPages[j], ivec3(b, layer), 0).rg
+// The 2 x 2 texels from (a.x, a.y) of a layer: one gather a component at the corner they share,
+// half a texel from any other (so no sub-texel rounding can pick other texels). Gather's order:
+// x (a.x, a.y + 1), y (a.x + 1, a.y + 1), z (a.x + 1, a.y), w (a.x, a.y). Two gathers where four
+// fetches were: the graphics units of some GPUs (the H100's few graphics TPCs) are bound by them.
+#define LB_NORMAL_GATHER(j)                          \
+  gx = textureGather(normalPages[j], corner, 0); \
+  gz = textureGather(normalPages[j], corner, 1)
 
 void nsQuad(int k, ivec2 a, ivec2 b, out vec2 g00, out vec2 g10, out vec2 g01, out vec2 g11) {
   const ivec4 lv = normalTable.level[k];
@@ -31,20 +33,27 @@ void nsQuad(int k, ivec2 a, ivec2 b, out vec2 g00, out vec2 g10, out vec2 g01, o
   const int array = index / normalTable.header.z, layer = index - array * normalTable.header.z;
   a -= page * n;
   b -= page * n;
+  const vec3 corner = vec3((vec2(a) + 1.0) / float(n + 1), float(layer));
+  vec4 gx, gz;
   if (kNormalArrays == 1) {
-    LB_NORMAL_QUAD(0);
-    return;
+    LB_NORMAL_GATHER(0);
+  } else {
+    switch (array) {
+      case 1: LB_NORMAL_GATHER(1); break;
+      case 2: LB_NORMAL_GATHER(2); break;
+      case 3: LB_NORMAL_GATHER(3); break;
+      case 4: LB_NORMAL_GATHER(4); break;
+      case 5: LB_NORMAL_GATHER(5); break;
+      case 6: LB_NORMAL_GATHER(6); break;
+      case 7: LB_NORMAL_GATHER(7); break;
+      default: LB_NORMAL_GATHER(0); break;
+    }
   }
-  switch (array) {
-    case 1: LB_NORMAL_QUAD(1); break;
-    case 2: LB_NORMAL_QUAD(2); break;
-    case 3: LB_NORMAL_QUAD(3); break;
-    case 4: LB_NORMAL_QUAD(4); break;
-    case 5: LB_NORMAL_QUAD(5); break;
-    case 6: LB_NORMAL_QUAD(6); break;
-    case 7: LB_NORMAL_QUAD(7); break;
-    default: LB_NORMAL_QUAD(0); break;
-  }
+  // A texel clamped onto its neighbour (the level's edge) is that neighbour, as the fetches read it.
+  g00 = vec2(gx.w, gz.w);
+  g10 = b.x > a.x ? vec2(gx.z, gz.z) : g00;
+  g01 = b.y > a.y ? vec2(gx.x, gz.x) : g00;
+  g11 = b.x > a.x ? (b.y > a.y ? vec2(gx.y, gz.y) : g10) : g01;
 }
 
 #include "normal_sample.glsl"
