@@ -144,6 +144,23 @@ TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAlike) {
   EXPECT_LE(worst, 1);
 }
 
+// The renderer takes pages by itself where one image cannot hold the map: a strip one sample
+// longer than the device's largest image side.
+TEST_F(NormalPagesGpu, AMapPastOneImageTakesPages) {
+  NormalMap nm;
+  nm.width = int(lbtest::gpu().props.limits.maxImageDimension2D) + 1;
+  nm.height = 2;
+  nm.texels.assign(size_t(nm.width) * 2 * 2, 0);
+  for (int w = nm.width, h = nm.height; w > 1 || h > 1;) {
+    w = std::max(1, w / 2), h = std::max(1, h / 2);
+    nm.coarser.push_back({w, h, std::vector<uint16_t>(size_t(w) * size_t(h) * 2, 0)});
+  }
+  const NormalPages pages = createNormalPages(lbtest::gpu(), nm, {});
+  EXPECT_TRUE(pages.paged);
+  EXPECT_GT(pages.layout.pageCount(), 1);
+  EXPECT_FALSE(createNormalPages(lbtest::gpu(), computeNormalMap(terrain(65, 65)), {}).paged);
+}
+
 TEST_F(NormalPagesGpu, MoreArraysThanTheShadersBindAreRefused) {
   const NormalMap nm = computeNormalMap(terrain(65, 65));
   try {
