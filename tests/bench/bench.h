@@ -10,6 +10,10 @@
 namespace lb {
 
 class Scheme;
+struct Context;
+
+// The benchmarks' shared Vulkan context (LODBENCH_BENCH_DEVICE picks the device), made on first use.
+Context& benchContext();
 
 void benchSchemeUpdate(benchmark::State& state, const Scheme& scheme);  // Scheme::update, default params
 void benchDensityMap(benchmark::State& state, int size);                // densityMap over a size^2 terrain

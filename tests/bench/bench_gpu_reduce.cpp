@@ -10,8 +10,6 @@
 
 namespace lb {
 
-namespace {
-
 Context& benchContext() {
   static Context* ctx = [] {
     auto* c = new Context();
@@ -22,6 +20,8 @@ Context& benchContext() {
   }();
   return *ctx;
 }
+
+namespace {
 
 // A frame-like pair: the top fifth clear (magenta sky) in both, terrain below that differs by a
 // few levels in some pixels; an error map of small values with -1 under the sky.

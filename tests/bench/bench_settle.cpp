@@ -22,17 +22,6 @@ namespace lb {
 
 namespace {
 
-Context& benchContext() {
-  static Context* ctx = [] {
-    auto* c = new Context();
-    const char* dev = std::getenv("LODBENCH_BENCH_DEVICE");
-    createContext(*c, {dev ? dev : "", false});
-    std::atexit([] { destroyContext(benchContext()); });
-    return c;
-  }();
-  return *ctx;
-}
-
 // One renderer for every benchmark here (made once: the pipelines take seconds on lavapipe), its
 // cbt converged at frame 80 of the flyover path over a 1025^2 terrain. Depth 2 (14 - subd 2) + 1
 // = 25: 1024 spacings x cells_per_texel 16 = 2^14 lattice units a side.
