@@ -327,6 +327,13 @@ SchemeTexture Renderer::readSchemeTexture() {
           schemeTexChannels_};
 }
 
+GpuMemoryAccount Renderer::gpuMemory() const {
+  GpuMemoryAccount sum = memory_;
+  if (terrainCopy_)
+    for (size_t r = 0; r < sum.live.size(); ++r) sum.live[r] += terrainCopy_->memory.live[r];
+  return sum;
+}
+
 const Selection& Renderer::lastSelection() const {
   static const Selection kNone;
   const Selection* s = path_ ? path_->selection() : nullptr;

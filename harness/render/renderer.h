@@ -10,11 +10,10 @@
 #include <memory>
 #include <vector>
 
+#include "render/device_terrain.h"
 #include "render/frame_data.h"
 #include "render/frame_slot.h"
 #include "render/gpu_profiler.h"
-#include "render/height_pages.h"
-#include "render/normal_pages.h"
 #include "render/path_drawer.h"
 #include "render/scheme.h"
 #include "vk/resources.h"
@@ -89,7 +88,8 @@ class Renderer {
   const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
   // Device memory this renderer and its path hold now, by resource (vk/gpu_memory.h): what a case's
   // summary.memory records.
-  const GpuMemoryAccount& gpuMemory() const { return memory_; }
+  // The terrain's copy (heights, normal map) counts in full, kept from an earlier renderer or not.
+  GpuMemoryAccount gpuMemory() const;
 
  private:
   using Slot = FrameSlot;  // render/frame_slot.h
@@ -118,8 +118,8 @@ class Renderer {
   const Scheme* scheme_ = nullptr;
   ParamValues params_;
   Image color_, errorTarget_, depth_, schemeTex_;
-  HeightPages heights_;        // the heightfield's pages and their table (render/height_pages.h)
-  NormalPages normals_;        // the normal map's pages and their table (render/normal_pages.h)
+  // The heightfield's pages and their table, the normal map (render/device_terrain.h).
+  std::shared_ptr<const DeviceTerrain> terrainCopy_;
   int schemeTexChannels_ = 4;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
   SetupCosts setupCosts_;
   Buffer histogram_, readback_, uniforms_;

@@ -8,14 +8,11 @@
 
 #include "error.h"
 #include "render/compute_pass.h"
-#include "render/height_pages.h"
-#include "render/normal_pages.h"
+#include "render/device_terrain.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
-#include "terrain/normal_map.h"
-#include "terrain/terrain_cache.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -68,20 +65,20 @@ void Renderer::createTargets() {
       createBuffer(ctx_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, tag(GpuResource::Capture));
   histogram_ = createBuffer(ctx_, LB_HIST_COUNTERS * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
                             tag(GpuResource::Capture));
-  // The heights as pages behind their table (one page unless the terrain says "page").
-  const auto tPages = std::chrono::steady_clock::now();
-  heights_ =
-      createHeightPages(ctx_, terrain_, tag(GpuResource::Heights), settings_.testPageDefect, settings_.testPageLayers);
-  setupCosts_.pagesS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tPages).count();
+  // The heights as pages behind their table (one page unless the terrain says "page") and the
+  // normal map: a large terrain's copy is kept from the renderer before (render/device_terrain.h).
+  DeviceTerrainOptions copyOptions;
+  copyOptions.heightDefect = settings_.testPageDefect;
+  copyOptions.heightLayers = settings_.testPageLayers;
+  copyOptions.normalCells = settings_.testNormalPageCells;
+  copyOptions.normalLayers = settings_.testNormalPageLayers;
+  copyOptions.normalDefect = settings_.testNormalPageDefect ? NormalPageDefect::OriginOffByOne : NormalPageDefect::None;
+  bool reused = false;
+  terrainCopy_ = deviceTerrain(ctx_, terrain_, copyOptions, &reused);
+  // A kept copy cost this renderer nothing: costs.terrains records each stage's largest.
+  setupCosts_.pagesS = reused ? 0.0 : terrainCopy_->pagesS;
+  setupCosts_.normalMapS = reused ? 0.0 : terrainCopy_->normalMapS;
   sampler_ = createSampler(ctx_, VK_FILTER_NEAREST);
-  // Once per terrain; the format is argued in terrain/normal_map.h.
-  const auto tNormals = std::chrono::steady_clock::now();
-  const std::shared_ptr<const NormalMap> kept = sharedNormalMap(terrain_);
-  const NormalMap& normals = *kept;
-  setupCosts_.normalMapS = std::chrono::duration<double>(std::chrono::steady_clock::now() - tNormals).count();
-  normals_ = createNormalPages(
-      ctx_, normals, tag(GpuResource::NormalMap), settings_.testNormalPageCells, settings_.testNormalPageLayers,
-      settings_.testNormalPageDefect ? NormalPageDefect::OriginOffByOne : NormalPageDefect::None);
   uniformStride_ = (sizeof(FrameUniforms) + ctx_.props.limits.minUniformBufferOffsetAlignment - 1) &
                    ~(ctx_.props.limits.minUniformBufferOffsetAlignment - 1);
   uniforms_ =
@@ -146,7 +143,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
     ComputePush push{};
     push.terrain = glm::vec4(terrain_.extent, float(settings_.grid), terrain_.minHeight, terrain_.maxHeight);
     std::memcpy(push.params, packed.params, sizeof push.params);
-    runComputePass(ctx_, scheme.info().compute, sampler_, heights_, schemeTex_, push);
+    runComputePass(ctx_, scheme.info().compute, sampler_, terrainCopy_->heights, schemeTex_, push);
     schemeTexChannels_ = 4;
   } else {
     SchemeTexture tex = scheme.preprocessGrid(terrain_, params_, settings_.grid);
@@ -185,8 +182,8 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
       write(LB_BINDING_HISTOGRAM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &hb),
   };
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
-  writeHeightDescriptors(ctx_, bindings_.set, heights_, sampler_);
-  writeNormalDescriptors(ctx_, bindings_.set, normals_, sampler_);
+  writeHeightDescriptors(ctx_, bindings_.set, terrainCopy_->heights, sampler_);
+  writeNormalDescriptors(ctx_, bindings_.set, terrainCopy_->normals, sampler_);
   bindPathBuffers();
 }
 
@@ -254,7 +251,7 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   struct FragSpec {
     int mode;
     VkBool32 heightNormals, mipZero, normalPaged;
-  } fragValues{int(mode), settings_.testHeightNormals, settings_.testMipZeroShading, normals_.paged};
+  } fragValues{int(mode), settings_.testHeightNormals, settings_.testMipZeroShading, terrainCopy_->normals.paged};
   VkBool32 captureValue = capture;
   VkSpecializationMapEntry captureEntry{1, 0, sizeof(VkBool32)};
   // Paths with instances capture the drawn mesh in the histogram pass (analytic cracks).
@@ -293,8 +290,8 @@ VkPipeline Renderer::pipeline(RenderMode mode, bool capture) {
   if (histogram && !meshStages)
     d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT, "histogram.geom.spv", g.meshCapture ? &meshSpec : nullptr});
   d.controlPoints = g.controlPoints;
-  d.heightArrays = uint32_t(heights_.arrays.size());
-  d.normalArrays = uint32_t(normals_.arrays.size());
+  d.heightArrays = uint32_t(terrainCopy_->heights.arrays.size());
+  d.normalArrays = uint32_t(terrainCopy_->normals.arrays.size());
   d.width = uint32_t(settings_.width);
   d.height = uint32_t(settings_.height);
   d.polygonMode = wire ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;

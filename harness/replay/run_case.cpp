@@ -261,7 +261,8 @@ CaseResult runCase(Context& ctx, const Case& c, const Config& config, const std:
   }
   // What the case's renderer holds at its end: the instance records grown to the path's largest
   // selection, the captures to the largest measured frame.
-  result.memory = memoryJson(&renderer.gpuMemory(), "", hostPeak(hostPeakReset));
+  const GpuMemoryAccount memory = renderer.gpuMemory();
+  result.memory = memoryJson(&memory, "", hostPeak(hostPeakReset));
   result.seconds = secondsSince(t0);
   return result;
 }

@@ -68,4 +68,9 @@ std::shared_ptr<const NormalMap> sharedNormalMap(const Heightfield& hf) {
   return made;
 }
 
+std::shared_ptr<const Heightfield> keptHeightfield(const Heightfield& hf) {
+  std::lock_guard<std::mutex> lock(gMutex);
+  return gKept.get() == &hf ? gKept : nullptr;
+}
+
 }  // namespace lb

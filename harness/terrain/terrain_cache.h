@@ -22,4 +22,8 @@ std::shared_ptr<const Heightfield> sharedHeightfield(const TerrainSpec& spec);
 // Thread-safe.
 std::shared_ptr<const NormalMap> sharedNormalMap(const Heightfield& hf);
 
+// The kept terrain when `hf` is it, else null: what a copy of it elsewhere (its pages on the
+// device, render/device_terrain.h) may be kept against. Thread-safe.
+std::shared_ptr<const Heightfield> keptHeightfield(const Heightfield& hf);
+
 }  // namespace lb

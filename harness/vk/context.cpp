@@ -340,6 +340,7 @@ VkShaderStageFlags layoutStages(const Context& ctx) {
 void destroyContext(Context& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);
+    ctx.keptTerrain.reset();
     vkDestroyDevice(ctx.device, nullptr);
   }
   if (ctx.messenger) {

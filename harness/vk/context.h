@@ -6,6 +6,7 @@
 #include <vulkan/vulkan.h>
 
 #include <atomic>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,10 @@ struct Context {
   // Count of validation messages of severity error (and warnings), for tests to assert zero.
   std::atomic<int> validationErrors{0};
   std::atomic<int> validationWarnings{0};
+  // A large terrain's device copy kept between the renderers of one terrain
+  // (render/device_terrain.h; typed there, so this layer need not know it). destroyContext
+  // releases it before the device.
+  std::shared_ptr<void> keptTerrain;
 };
 
 // Throws with every device's rejection reason when none fits: lb::InputError when options.device

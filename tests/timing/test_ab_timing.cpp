@@ -27,16 +27,19 @@ void printTimings(const json& verdict) {
 
 // A/A control: the same binary on both sides, 6 interleaved rounds, default threshold and alpha.
 // (A false alarm needs the 6 round pairs' log ratios to be significant at 0.01 and >10% slower.)
-TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
-  std::string out = freshDir("aa");
+// Even on an idle machine a burst of outside noise can land on one side's rounds: CI saw one
+// false 1.109x (p = 0.0017) in many runs. One alarm is therefore answered by a second, independent
+// A/A run, which must be clean: two alarms in a row at this alpha mean the protocol, not the luck,
+// is wrong. Every other assertion holds for both runs.
+json runAa(const std::string& name) {
+  std::string out = freshDir(name);
   CliOut o = lodbench(std::string("ab --baseline ") + LODBENCH_BINARY + " --candidate " + LODBENCH_BINARY + " " +
                       kTinyConfig + " --rounds 6 --out " + out);
   json v = readJson(out + "/compare.json");
   printTimings(v);
-  EXPECT_EQ(o.code, 0) << o.text;
-  EXPECT_EQ(v["verdict"], "clean");
+  EXPECT_EQ(o.code == 0, v["verdict"] == "clean") << o.text;  // the exit status says what the verdict says
   EXPECT_EQ(v["exact"]["checked"], true);
-  ASSERT_EQ(v["cases"].size(), 2u);
+  EXPECT_EQ(v["cases"].size(), 2u);
   for (auto& c : v["cases"]) {
     EXPECT_EQ(c["exact"]["differs"], false) << c["case_id"];  // deterministic counters across processes
     EXPECT_EQ(c["timing"]["n_baseline"], 6 * 60);             // 6 rounds x 30 frames x 2 repetitions
@@ -44,6 +47,17 @@ TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
     EXPECT_EQ(c["timing"]["paired_rounds"], true);
   }
   for (const char* d : {"a1", "b1", "a6", "b6", "compare.md"}) EXPECT_TRUE(fs::exists(out + "/" + d)) << d;
+  return v;
+}
+
+TEST(AbTiming, SameBinaryOnBothSidesRaisesNoFalseAlarm) {
+  json v = runAa("aa");
+  if (v["verdict"] != "clean") {
+    std::printf("    A/A run 1 gave \"%s\": answered by a second, independent A/A run\n",
+                v["verdict"].get<std::string>().c_str());
+    v = runAa("aa2");
+  }
+  EXPECT_EQ(v["verdict"], "clean");
 }
 
 // A planted 20% slowdown (run --test-slowdown 0.2) through a wrapper script as binary B.
