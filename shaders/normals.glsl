@@ -9,7 +9,8 @@
 layout(set = 0, binding = LB_BINDING_NORMAL_PAGES) uniform sampler2DArray normalPages[LB_NORMAL_ARRAYS];
 layout(constant_id = LB_SPEC_NORMAL_ARRAYS) const int kNormalArrays = LB_NORMAL_ARRAYS;
 layout(std430, set = 0, binding = LB_BINDING_NORMAL_TABLE) readonly buffer NormalTable {
-  ivec4 header;   // x: levels; y: N, texels a page holds of its own a side; z: layers an array holds
+  ivec4 header;   // x: levels; y: N, texels a page holds of its own a side; z: layers an array holds;
+                  // w: the first level that is also one image (render/normal_pages.h; x: none)
   ivec4 level[];  // per level: texels along x and z, first page, pages along x
 }
 normalTable;
@@ -59,5 +60,6 @@ void nsQuad(int k, ivec2 a, ivec2 b, out vec2 g00, out vec2 g10, out vec2 g01, o
 #include "normal_sample.glsl"
 
 int normalLevels() { return normalTable.header.x; }
+int normalCoarseFrom() { return normalTable.header.w; }
 
 #endif

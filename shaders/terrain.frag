@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Identical shading for every scheme: per-pixel normals from the terrain's normal map (filtered at
 // the level of the pixel's footprint, footprint.h), one directional light. A map that fits one image
-// is read by the sampler's trilinear filter; one past it from its pages (normals.glsl).
+// is read by the sampler's trilinear filter; one past it from its pages (normals.glsl) where a
+// pixel is finer than its coarse levels, which are one image too.
 #include "common.glsl"
 #include "footprint.h"
 #include "normals.glsl"
@@ -33,7 +34,13 @@ vec3 mapNormal(vec3 world) {
   vec2 size = frame.terrain.zw;
   vec2 t = clamp((world.xz - frame.origin.xy) / frame.terrain.x, 0.0, 1.0) * (size - 1.0);
   float level = kMipZero ? 0.0 : shadingLevel(world, frame.shading.xyz, frame.shading.w, frame.terrain.x, int(size.x), int(size.y));
-  if (kNormalPaged) return nsMapNormal(t, level, normalLevels());
+  if (kNormalPaged) {
+    // Levels from normalCoarseFrom() on are also one image, read as an unpaged map is (its level 0
+    // is that level; the same texel coordinates and fraction): only finer pixels take the pages.
+    const float coarse = float(normalCoarseFrom());
+    if (level < coarse) return nsMapNormal(t, level, normalLevels());
+    level -= coarse;
+  }
   vec2 g = textureLod(normalMap, (t + 0.5) / size, level).rg;
   return normalize(vec3(g.x, 1.0, g.y));
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <vector>
 
@@ -122,10 +123,12 @@ TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAlike) {
   };
   RenderSettings paged64 = base;
   paged64.testNormalPageCells = 64;
+  paged64.testNormalCoarseFrom = 99;  // every pixel from the pages: the next test has the coarse image
   const std::vector<uint8_t> want = shaded(paged64);
   for (int cells : {5, 37}) {
     RenderSettings s = base;
     s.testNormalPageCells = cells;
+    s.testNormalCoarseFrom = 99;
     s.testNormalPageLayers = cells == 5 ? 512 : 16;  // several arrays, at most the 8 bound
     NormalPages pages = createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}, cells, s.testNormalPageLayers);
     EXPECT_TRUE(pages.paged);
@@ -142,6 +145,55 @@ TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAlike) {
   int worst = 0;
   for (size_t i = 0; i < single.size(); ++i) worst = std::max(worst, std::abs(int(single[i]) - int(want[i])));
   EXPECT_LE(worst, 1);
+}
+
+// A paged map's coarse levels are also one image: a pixel at or past its first level reads that
+// image, a finer one the pages. A defect planted in the pages shows so: with the coarse image it
+// changes some of the pixels it changes without it, never another, and not all of them.
+TEST_F(NormalPagesGpu, APagedMapsCoarseLevelsShadeAsTheOneImage) {
+  const Heightfield hf = terrain(257, 193);
+  const std::vector<CameraPose> poses = {lbtest::poseAt({-300, 700, -300}, {500, 0, 380}),
+                                         lbtest::poseAt({310, 95, 240}, {620, 30, 520}, 50.0f),
+                                         lbtest::poseAt({40, 12, 60}, {200, 0, 160}, 50.0f)};
+  RenderSettings base;
+  base.width = 160;
+  base.height = 90;
+  base.grid = 8;
+  base.testNormalPageCells = 37;
+  const Scheme& uniform = *findScheme("uniform");
+  auto shaded = [&](int coarseFrom, bool defect) {
+    RenderSettings s = base;
+    s.testNormalCoarseFrom = coarseFrom;
+    s.testNormalPageDefect = defect;
+    Renderer r(lbtest::gpu(), hf, s);
+    r.setScheme(uniform, {});
+    std::vector<uint8_t> out;
+    for (const CameraPose& p : poses) {
+      const std::vector<uint8_t> px = r.renderImage(p, p, RenderMode::Shaded);
+      out.insert(out.end(), px.begin(), px.end());
+    }
+    return out;
+  };
+  const std::vector<uint8_t> clean = shaded(0, false), withCoarse = shaded(0, true), pagesOnly = shaded(99, true);
+  ASSERT_EQ(withCoarse.size(), clean.size());
+  ASSERT_EQ(pagesOnly.size(), clean.size());
+  int changed = 0, changedPagesOnly = 0, outside = 0;
+  for (size_t i = 0; i < clean.size(); i += 4) {
+    const bool c = !std::equal(&withCoarse[i], &withCoarse[i] + 4, &clean[i]);
+    const bool p = !std::equal(&pagesOnly[i], &pagesOnly[i] + 4, &clean[i]);
+    changed += c;
+    changedPagesOnly += p;
+    outside += c && !p;
+  }
+  EXPECT_EQ(outside, 0) << "the coarse image changed pixels the pages' defect does not";
+  EXPECT_GT(changed, 0) << "no pixel read the pages";
+  EXPECT_LT(changed, changedPagesOnly) << "no pixel read the coarse image";
+  std::printf("    pixels the planted defect changes: %d from the pages alone, %d with the coarse image\n",
+              changedPagesOnly, changed);
+// Without the coarse image the renderer is the pages alone; a level past the map's is none.
+  NormalPages p = createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}, 37);
+  EXPECT_EQ(p.coarseFrom, 1);
+  EXPECT_EQ(p.image.mipLevels, uint32_t(computeNormalMap(hf).levels() - 1));
 }
 
 // The renderer takes pages by itself where one image cannot hold the map: a strip one sample

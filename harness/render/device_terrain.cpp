@@ -31,7 +31,7 @@ std::shared_ptr<DeviceTerrain> makeCopy(Context& ctx, const Heightfield& hf, con
   const std::shared_ptr<const NormalMap> normals = sharedNormalMap(hf);
   copy->normalMapS = secondsSince(tNormals);
   copy->normals = createNormalPages(ctx, *normals, {GpuResource::NormalMap, &copy->memory}, o.normalCells,
-                                    o.normalLayers, o.normalDefect);
+                                    o.normalLayers, o.normalDefect, o.normalCoarseFrom);
   return copy;
 }
 
@@ -39,7 +39,7 @@ std::shared_ptr<DeviceTerrain> makeCopy(Context& ctx, const Heightfield& hf, con
 
 bool DeviceTerrainOptions::shareable() const {
   return heightDefect == PageDefect::None && heightLayers == 0 && normalCells == 0 && normalLayers == 0 &&
-         normalDefect == NormalPageDefect::None;
+         normalDefect == NormalPageDefect::None && normalCoarseFrom == 0;
 }
 
 std::shared_ptr<const DeviceTerrain> deviceTerrain(Context& ctx, const Heightfield& hf,

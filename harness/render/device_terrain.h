@@ -30,6 +30,7 @@ struct DeviceTerrainOptions {
   int normalCells = 0;
   uint32_t normalLayers = 0;
   NormalPageDefect normalDefect = NormalPageDefect::None;
+  int normalCoarseFrom = 0;
   bool shareable() const;
 };
 

@@ -61,6 +61,9 @@ struct RenderSettings {
   int testNormalPageCells = 0;
   uint32_t testNormalPageLayers = 0;
   bool testNormalPageDefect = false;
+  // Testing only: with pages, the map's level whose chain is also one image (0: the first that
+  // fits, as a map past one image gets; past the map's levels: none, every pixel from the pages).
+  int testNormalCoarseFrom = 0;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

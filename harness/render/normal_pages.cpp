@@ -55,29 +55,45 @@ static Image standIn(Context& ctx, bool array, MemoryTag tag) {
   return img;
 }
 
+// The levels from `first` on as one image with its mips, trilinear by the sampler.
+static void uploadLevels(Context& ctx, const NormalMap& nm, int first, MemoryTag tag, NormalPages& out) {
+  out.image = createImage(ctx, uint32_t(nm.levelWidth(first)), uint32_t(nm.levelHeight(first)), VK_FORMAT_R16G16_SFLOAT,
+                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT, tag,
+                          uint32_t(nm.levels() - first));
+  std::vector<ImageLevelData> levels;
+  for (int k = first; k < nm.levels(); ++k)
+    levels.push_back({nm.levelTexels(k).data(), nm.levelTexels(k).size() * sizeof(uint16_t)});
+  uploadImageLevels(ctx, out.image, levels);
+  // Trilinear over every level: terrain.frag chooses the level (textureLod), never the derivatives.
+  out.linear = createSampler(ctx, VK_FILTER_LINEAR, float(nm.levels() - first - 1));
+}
+
 NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, int cells, uint32_t maxLayers,
-                              NormalPageDefect defect) {
+                              NormalPageDefect defect, int coarseFrom) {
   NormalPages out;
   const DeviceLimits limits = deviceLimits(ctx.physicalDevice);
   out.paged = cells > 0 || !normalMapFitsOneImage(nm.width, nm.height, ctx.props.limits.maxImageDimension2D,
                                                   limits.maxAllocationBytes);
   if (!out.paged) {
-    out.image = createImage(ctx, uint32_t(nm.width), uint32_t(nm.height), VK_FORMAT_R16G16_SFLOAT,
-                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                            tag, uint32_t(nm.levels()));
-    std::vector<ImageLevelData> levels;
-    for (int k = 0; k < nm.levels(); ++k)
-      levels.push_back({nm.levelTexels(k).data(), nm.levelTexels(k).size() * sizeof(uint16_t)});
-    uploadImageLevels(ctx, out.image, levels);
-    // Trilinear over every level: terrain.frag chooses the level (textureLod), never the derivatives.
-    out.linear = createSampler(ctx, VK_FILTER_LINEAR, float(nm.levels() - 1));
+    uploadLevels(ctx, nm, 0, tag, out);
     out.arrays.push_back(standIn(ctx, true, tag));
     const int32_t table[8] = {1, 1, 1, 0, 1, 1, 0, 1};
     out.table = createBufferWithData(ctx, table, sizeof table, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tag);
     return out;
   }
-  out.image = standIn(ctx, false, tag);
-  out.linear = createSampler(ctx, VK_FILTER_LINEAR, 0.0f);
+  out.coarseFrom = coarseFrom;
+  if (coarseFrom == 0)
+    for (out.coarseFrom = 1; out.coarseFrom < nm.levels(); ++out.coarseFrom)
+      if (normalMapFitsOneImage(nm.levelWidth(out.coarseFrom), nm.levelHeight(out.coarseFrom),
+                                ctx.props.limits.maxImageDimension2D, limits.maxAllocationBytes))
+        break;
+  out.coarseFrom = std::clamp(out.coarseFrom, 1, nm.levels());
+  if (out.coarseFrom < nm.levels()) {
+    uploadLevels(ctx, nm, out.coarseFrom, tag, out);
+  } else {
+    out.image = standIn(ctx, false, tag);
+    out.linear = createSampler(ctx, VK_FILTER_LINEAR, 0.0f);
+  }
   const uint32_t maxArrayLayers = ctx.props.limits.maxImageArrayLayers;
   const NormalPageLayout l =
       layoutFor(nm.width, nm.height, cells, maxArrayLayers, limits.maxAllocationBytes, maxLayers);
@@ -105,6 +121,7 @@ NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, 
       });
   std::vector<int32_t> table(4 + 4 * l.levels.size());
   table[0] = int32_t(l.levels.size()), table[1] = l.cells, table[2] = int32_t(out.perArray);
+  table[3] = out.coarseFrom;
   for (size_t k = 0; k < l.levels.size(); ++k) {
     const NormalPageLevel& v = l.levels[k];
     std::memcpy(&table[4 + 4 * k], std::array<int32_t, 4>{v.width, v.height, v.first, v.pagesX}.data(), 16);

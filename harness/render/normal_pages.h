@@ -4,8 +4,11 @@
 // (trilinear at the shader's level): the fastest read, one instruction. A map past one image (the
 // device's maxImageDimension2D or largest allocation) is every level in pages
 // (terrain/normal_page_layout.h) as layers of RG16F 2D array images behind a level table,
-// filtered in the shader (shaders/normals.glsl). The shader takes one or the other by a
-// specialization constant; the other's bindings hold 1 x 1 stand-ins.
+// filtered in the shader (shaders/normals.glsl), and its coarse levels, from the first that fits
+// one image, also as one image read by the sampler: a distant pixel (the most of a frame over a
+// large terrain) reads as fast as from an unpaged map, and only pixels finer than that level take
+// the shader's filter. The shader takes one or the other by a specialization constant; bindings it
+// does not read hold 1 x 1 stand-ins.
 #include <vector>
 
 #include "terrain/normal_page_layout.h"
@@ -17,7 +20,8 @@ struct Context;
 
 struct NormalPages {
   bool paged = false;
-  Image image;                   // !paged: the map, every level; paged: a stand-in
+  Image image;                   // !paged: the map, every level; paged: levels coarseFrom.. or a stand-in
+  int coarseFrom = 0;            // paged: the map's level that is image's level 0 (levels(): none)
   vk::Unique<VkSampler> linear;  // trilinear over the image's levels
   NormalPageLayout layout;
   uint32_t perArray = 1;      // layers an array holds
@@ -30,10 +34,12 @@ struct NormalPages {
 enum class NormalPageDefect { None, OriginOffByOne };
 
 // Pages when the map does not fit one image or `cells` > 0 (testing: pages of that size);
-// `maxLayers` > 0 caps an array's layers (testing). Throws FeatureMissing when the pages need more
-// than LB_NORMAL_ARRAYS arrays.
+// `maxLayers` > 0 caps an array's layers (testing). With pages, `coarseFrom` > 0 makes the levels
+// from it on the one image (testing; a value past the map's levels: none); 0 takes the first level
+// from 1 on whose chain fits one image. Throws FeatureMissing when the pages need more than
+// LB_NORMAL_ARRAYS arrays.
 NormalPages createNormalPages(Context& ctx, const NormalMap& nm, MemoryTag tag, int cells = 0, uint32_t maxLayers = 0,
-                              NormalPageDefect defect = NormalPageDefect::None);
+                              NormalPageDefect defect = NormalPageDefect::None, int coarseFrom = 0);
 // The pages' device bytes and array count for a width x height terrain on a device with these
 // limits (render/terrain_fit.cpp checks them before any work); arrays > LB_NORMAL_ARRAYS: too large.
 struct NormalPagesFit {

@@ -73,6 +73,7 @@ void Renderer::createTargets() {
   copyOptions.normalCells = settings_.testNormalPageCells;
   copyOptions.normalLayers = settings_.testNormalPageLayers;
   copyOptions.normalDefect = settings_.testNormalPageDefect ? NormalPageDefect::OriginOffByOne : NormalPageDefect::None;
+  copyOptions.normalCoarseFrom = settings_.testNormalCoarseFrom;
   bool reused = false;
   terrainCopy_ = deviceTerrain(ctx_, terrain_, copyOptions, &reused);
   // A kept copy cost this renderer nothing: costs.terrains records each stage's largest.
