@@ -42,7 +42,10 @@ while (($#)); do
 done
 case $source in gdal | vrt | r32f | procedural) ;; *) echo "$0: --source is gdal, vrt, r32f or procedural" >&2; exit 2 ;; esac
 # A tile needs at least 2 samples a side.
-[[ $tiles =~ ^[1-9][0-9]*$ ]] && ((tiles <= size - 1)) || { echo "$0: --tiles is 1..$((size - 1))" >&2; exit 2; }
+if ! [[ $tiles =~ ^[1-9][0-9]*$ ]] || ((tiles > size - 1)); then
+  echo "$0: --tiles is 1..$((size - 1))" >&2
+  exit 2
+fi
 [[ $source == gdal || $source == vrt ]] && bash "$root/scripts/apt-install.sh" gdal-bin
 data=$root/.data/large
 mkdir -p "$data" "$out"
