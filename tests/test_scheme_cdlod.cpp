@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <random>
@@ -586,4 +587,37 @@ TEST(SchemeCdlodSse, NodeErrorsEqualACellByCellScanForEveryNodeSize) {
         EXPECT_EQ(e.dev[size_t(p)], want) << "q " << q << ", node size " << base << ", level " << p;
       }
     }
+}
+
+// The top levels of cdlod-sse's node errors scan each triangle's samples in bands of rows on the
+// terrain threads: the same bits as one scan, for triangles inside, across and outside the terrain
+// and degenerate ones, with 1 to 7 bands (LODBENCH_THREADS, as the load benchmark sets it).
+TEST(SchemeCdlodSse, TriangleDeviationInRowBandsIsTheSameBits) {
+  TerrainSpec spec;
+  spec.size = 1025;
+  spec.seed = 4;
+  spec.extent = 1000;
+  spec.heightScale = 150;
+  spec.detailToSpacing = true;
+  const Heightfield hf = makeProcedural(spec);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> coord(-80.0, 1100.0);
+  const char* before = std::getenv("LODBENCH_THREADS");
+  const std::string saved = before ? before : "";
+  int compared = 0;
+  for (const char* threads : {"1", "3", "7"}) {
+    setenv("LODBENCH_THREADS", threads, 1);
+    for (int k = 0; k < 40; ++k) {
+      glm::dvec2 a(coord(rng), coord(rng)), b(coord(rng), coord(rng)), c(coord(rng), coord(rng));
+      if (k % 10 == 0) c = a + 0.5 * (b - a);  // degenerate: on the edge a-b
+      const double one = triangleDeviation(hf, a, b, c), banded = triangleDeviation(hf, a, b, c, true);
+      EXPECT_EQ(one, banded) << threads << " threads, triangle " << k;
+      compared += one > 0;
+    }
+  }
+  if (before)
+    setenv("LODBENCH_THREADS", saved.c_str(), 1);
+  else
+    unsetenv("LODBENCH_THREADS");
+  EXPECT_GT(compared, 60);  // most triangles cross the terrain: the comparison is not of zeros
 }

@@ -29,21 +29,27 @@ void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, i
     // Per cell row and block column, so that every level (the coarse ones have few block rows)
     // spreads over the threads.
     std::vector<float> rowMax(size_t(rows) * size_t(blockCols), 0.0f);
-    parallelRows(
-        rows,
-        [&](int r0, int r1) {
-          for (int r = r0; r < r1; ++r) {
-            const double z0 = r * s / q, z1 = std::min((r + 1) * s, cellsZ) / q;
-            for (int c = 0; c < cols; ++c) {
-              const double x0 = c * s / q, x1 = std::min((c + 1) * s, cellsX) / q;
-              const dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
-              const double d = std::max(triangleDeviation(hf, v00, v10, v11), triangleDeviation(hf, v00, v11, v01));
-              float& m = rowMax[size_t(r) * size_t(blockCols) + size_t(c / n)];
-              m = std::max(m, float(d));
-            }
-          }
-        },
-        std::max(1, 4096 / std::max(1, cols)));
+    // The top levels have fewer cell rows than threads, and each of their cells covers a large
+    // part of the terrain: there the cells go one after the other and each triangle's samples
+    // spread over the threads instead (the same bits either way).
+    const bool fewRows = rows < terrainThreads();
+    auto scanRows = [&](int r0, int r1) {
+      for (int r = r0; r < r1; ++r) {
+        const double z0 = r * s / q, z1 = std::min((r + 1) * s, cellsZ) / q;
+        for (int c = 0; c < cols; ++c) {
+          const double x0 = c * s / q, x1 = std::min((c + 1) * s, cellsX) / q;
+          const dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
+          const double d =
+              std::max(triangleDeviation(hf, v00, v10, v11, fewRows), triangleDeviation(hf, v00, v11, v01, fewRows));
+          float& m = rowMax[size_t(r) * size_t(blockCols) + size_t(c / n)];
+          m = std::max(m, float(d));
+        }
+      }
+    };
+    if (fewRows)
+      scanRows(0, rows);
+    else
+      parallelRows(rows, scanRows, std::max(1, 4096 / std::max(1, cols)));
     std::vector<float>& out = dev[size_t(p)];
     out.assign(size_t(blockCols) * size_t(blockRows), 0.0f);
     for (int r = 0; r < rows; ++r)

@@ -5,7 +5,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <thread>
+#include <vector>
 
 #include "schemes/preprocess/deviation_bounds.h"
 #include "terrain/heightfield.h"
@@ -152,8 +154,10 @@ double edgeDeviation(const Heightfield& hf, dvec2 p, dvec2 q, double hp, double 
 }
 
 // The part of triangleDeviation inside the triangle: heightfield samples against the plane
-// through the three vertices (heights ha, hb, hc). 0 for a degenerate triangle.
-double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, double ha, double hb, double hc) {
+// through the three vertices (heights ha, hb, hc), over sample rows [zFrom, zTo] (clamped to the
+// triangle's). 0 for a degenerate triangle.
+double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, double ha, double hb, double hc,
+                         int zFrom = 0, int zTo = std::numeric_limits<int>::max()) {
   double worst = 0;
   dvec2 e1 = b - a, e2 = c - a;
   double det = e1.x * e2.y - e1.y * e2.x;
@@ -165,7 +169,7 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
   dvec2 v[3] = {a, b, c};
   double zlo = std::max(0.0, std::min({a.y, b.y, c.y})),
          zhi = std::min(double(hf.height - 1), std::max({a.y, b.y, c.y}));
-  for (int z = ceilToInt(zlo), zEnd = floorToInt(zhi); z <= zEnd; ++z) {
+  for (int z = std::max(ceilToInt(zlo), zFrom), zEnd = std::min(floorToInt(zhi), zTo); z <= zEnd; ++z) {
     double xlo = INFINITY, xhi = -INFINITY;
     for (int e = 0; e < 3; ++e) {
       dvec2 p = v[e], q = v[(e + 1) % 3];
@@ -205,11 +209,22 @@ double interiorDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, doubl
 
 }  // namespace
 
-double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c) {
+double triangleDeviation(const Heightfield& hf, dvec2 a, dvec2 b, dvec2 c, bool rowsInParallel) {
   double ha = heightAt(hf, a), hb = heightAt(hf, b), hc = heightAt(hf, c);
   double worst =
       std::max({edgeDeviation(hf, a, b, ha, hb), edgeDeviation(hf, b, c, hb, hc), edgeDeviation(hf, c, a, hc, ha)});
-  return std::max(worst, interiorDeviation(hf, a, b, c, ha, hb, hc));
+  if (!rowsInParallel) return std::max(worst, interiorDeviation(hf, a, b, c, ha, hb, hc, 0, hf.height - 1));
+  // Each band's maximum, then theirs: max is exact and order-free, so the bands change nothing.
+  const int z0 = std::max(0, ceilToInt(std::min({a.y, b.y, c.y})));
+  const int z1 = std::min(hf.height - 1, floorToInt(std::max({a.y, b.y, c.y})));
+  if (z1 < z0) return worst;
+  std::vector<double> bands(size_t(z1 - z0 + 1), 0.0);
+  parallelRows(
+      z1 - z0 + 1,
+      [&](int r0, int r1) { bands[size_t(r0)] = interiorDeviation(hf, a, b, c, ha, hb, hc, z0 + r0, z0 + r1 - 1); },
+      256);
+  for (double w : bands) worst = std::max(worst, w);
+  return worst;
 }
 
 namespace {

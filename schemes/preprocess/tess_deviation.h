@@ -36,7 +36,10 @@ DeviationTable tessDeviationReference(const Heightfield& hf, int grid);
 // difference of a bilinear cell and a plane has no interior extremum, so the maximum lies on the
 // boundary of a cell-triangle piece: on a triangle edge (a quadratic between grid-line crossings)
 // or on a grid line (linear between samples, so at a sample inside the triangle).
-double triangleDeviation(const Heightfield& hf, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c);
+// rowsInParallel: the samples inside are scanned in bands of rows on the terrain threads
+// (terrain/parallel_rows.h), for a caller with fewer triangles than threads (the top levels of a
+// quadtree over a large terrain: one triangle there covers half the terrain). The same bits.
+double triangleDeviation(const Heightfield& hf, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, bool rowsInParallel = false);
 
 // The triangles of one patch at inner level 2^k with the given power-of-two edge levels, in the
 // patch's (u, v) domain, as the D3D11 / Vulkan reference tessellator (Mesa lavapipe, and the
