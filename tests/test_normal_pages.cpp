@@ -190,7 +190,7 @@ TEST_F(NormalPagesGpu, APagedMapsCoarseLevelsShadeAsTheOneImage) {
   EXPECT_LT(changed, changedPagesOnly) << "no pixel read the coarse image";
   std::printf("    pixels the planted defect changes: %d from the pages alone, %d with the coarse image\n",
               changedPagesOnly, changed);
-// Without the coarse image the renderer is the pages alone; a level past the map's is none.
+  // Without the coarse image the renderer is the pages alone; a level past the map's is none.
   NormalPages p = createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}, 37);
   EXPECT_EQ(p.coarseFrom, 1);
   EXPECT_EQ(p.image.mipLevels, uint32_t(computeNormalMap(hf).levels() - 1));
