@@ -21,9 +21,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Lexically normal: merge names folders so (TempDir() ends in a slash).
+// Lexically normal: merge names folders so (TempDir() ends in a slash). One folder per test: ctest
+// runs tests in parallel processes, and a shared one had one test remove another's shards.
 std::string root() {
-  return fs::path(::testing::TempDir() + "/lodbench_merge").lexically_normal().string();
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  return fs::path(::testing::TempDir() + "/lodbench_merge_" + test).lexically_normal().string();
 }
 
 std::string bytesOf(const fs::path& p) {
