@@ -101,26 +101,39 @@ TEST(NormalPageLayout, ChoosesThePageThatStoresLeastAndFitsTheArrays) {
 
 class NormalPagesGpu : public lbtest::GpuTest {};
 
+namespace {
+
+// Small frames of uniform's default grid, for comparing shading pixel by pixel.
+RenderSettings smallFrames() {
+  RenderSettings s;
+  s.width = 160;
+  s.height = 90;
+  s.grid = 8;
+  return s;
+}
+
+// uniform's shaded frames at every pose, one after the other.
+std::vector<uint8_t> shadedFrames(const Heightfield& hf, const RenderSettings& s,
+                                  const std::vector<CameraPose>& poses) {
+  Renderer r(lbtest::gpu(), hf, s);
+  r.setScheme(*findScheme("uniform"), {});
+  std::vector<uint8_t> out;
+  for (const CameraPose& p : poses) {
+    const std::vector<uint8_t> px = r.renderImage(p, p, RenderMode::Shaded);
+    out.insert(out.end(), px.begin(), px.end());
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST_F(NormalPagesGpu, PagesOfAnySizeInSeveralArraysShadeAlike) {
   const Heightfield hf = terrain(257, 193);
   // Over the whole terrain, from far (coarse levels) and near (level 0 across page borders).
   const std::vector<CameraPose> poses = {lbtest::poseAt({-300, 700, -300}, {500, 0, 380}),
                                          lbtest::poseAt({310, 95, 240}, {620, 30, 520}, 50.0f)};
-  RenderSettings base;
-  base.width = 160;
-  base.height = 90;
-  base.grid = 8;
-  const Scheme& uniform = *findScheme("uniform");
-  auto shaded = [&](const RenderSettings& s) {
-    Renderer r(lbtest::gpu(), hf, s);
-    r.setScheme(uniform, {});
-    std::vector<uint8_t> out;
-    for (const CameraPose& p : poses) {
-      const std::vector<uint8_t> px = r.renderImage(p, p, RenderMode::Shaded);
-      out.insert(out.end(), px.begin(), px.end());
-    }
-    return out;
-  };
+  const RenderSettings base = smallFrames();
+  auto shaded = [&](const RenderSettings& s) { return shadedFrames(hf, s, poses); };
   RenderSettings paged64 = base;
   paged64.testNormalPageCells = 64;
   paged64.testNormalCoarseFrom = 99;  // every pixel from the pages: the next test has the coarse image
@@ -155,24 +168,12 @@ TEST_F(NormalPagesGpu, APagedMapsCoarseLevelsShadeAsTheOneImage) {
   const std::vector<CameraPose> poses = {lbtest::poseAt({-300, 700, -300}, {500, 0, 380}),
                                          lbtest::poseAt({310, 95, 240}, {620, 30, 520}, 50.0f),
                                          lbtest::poseAt({40, 12, 60}, {200, 0, 160}, 50.0f)};
-  RenderSettings base;
-  base.width = 160;
-  base.height = 90;
-  base.grid = 8;
-  base.testNormalPageCells = 37;
-  const Scheme& uniform = *findScheme("uniform");
   auto shaded = [&](int coarseFrom, bool defect) {
-    RenderSettings s = base;
+    RenderSettings s = smallFrames();
+    s.testNormalPageCells = 37;
     s.testNormalCoarseFrom = coarseFrom;
     s.testNormalPageDefect = defect;
-    Renderer r(lbtest::gpu(), hf, s);
-    r.setScheme(uniform, {});
-    std::vector<uint8_t> out;
-    for (const CameraPose& p : poses) {
-      const std::vector<uint8_t> px = r.renderImage(p, p, RenderMode::Shaded);
-      out.insert(out.end(), px.begin(), px.end());
-    }
-    return out;
+    return shadedFrames(hf, s, poses);
   };
   const std::vector<uint8_t> clean = shaded(0, false), withCoarse = shaded(0, true), pagesOnly = shaded(99, true);
   ASSERT_EQ(withCoarse.size(), clean.size());
@@ -190,7 +191,7 @@ TEST_F(NormalPagesGpu, APagedMapsCoarseLevelsShadeAsTheOneImage) {
   EXPECT_LT(changed, changedPagesOnly) << "no pixel read the coarse image";
   std::printf("    pixels the planted defect changes: %d from the pages alone, %d with the coarse image\n",
               changedPagesOnly, changed);
-  // Without the coarse image the renderer is the pages alone; a level past the map's is none.
+  // Here the whole chain past level 0 fits one image: the coarse image starts at level 1.
   NormalPages p = createNormalPages(lbtest::gpu(), computeNormalMap(hf), {}, 37);
   EXPECT_EQ(p.coarseFrom, 1);
   EXPECT_EQ(p.image.mipLevels, uint32_t(computeNormalMap(hf).levels() - 1));
