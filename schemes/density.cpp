@@ -46,8 +46,11 @@ class Density : public Scheme {
     return kInfo;
   }
 
-  SchemeTexture preprocess(const Heightfield& hf, const ParamValues& v) const override {
-    return redTexture(hf.width, hf.height, densityMap(hf, float(v.at("threshold")), float(v.at("scale"))));
+  SampleMap sampleMap(const Heightfield& hf, const ParamValues& v) const override {
+    const float threshold = float(v.at("threshold")), scale = float(v.at("scale"));
+    return {[&hf, threshold, scale](int z, int x0, int count, float* out) {
+      densityRow(hf, threshold, scale, z, x0, count, out);
+    }};
   }
 };
 

@@ -1,14 +1,15 @@
 // Density map lookups (AMD "Detail Tessellation 11", Density-based; Rapp 2011, 5.2.3). The map is
-// schemes/preprocess/density_map.cpp's output, one texel per heightfield sample, density in .r.
-// Everything here is integer arithmetic identical to density_map.cpp, so tests can recompute it.
-layout(set = 0, binding = LB_BINDING_SCHEME_TEX) uniform sampler2D densityMap;
+// schemes/preprocess/density_map.cpp's output, one value per heightfield sample, read through the
+// heights' pages (sample_map.glsl). Everything here is integer arithmetic identical to
+// density_map.cpp, so tests can recompute it.
+#include "sample_map.glsl"
 
 // round(i * (size - 1) / n): the texel under grid vertex index i (density_map.cpp gridTexel).
 int gridTexel(int i, int n, int size) { return (2 * i * (size - 1) + n) / (2 * n); }
 
 // Texel under grid vertex (i, j) of the N x N patch grid.
 ivec2 gridVertexTexel(ivec2 v) {
-  ivec2 size = textureSize(densityMap, 0);
+  ivec2 size = terrainSamples();
   int n = int(frame.terrain.y);
   return ivec2(gridTexel(v.x, n, size.x), gridTexel(v.y, n, size.y));
 }
@@ -33,7 +34,7 @@ float maxDensityAlongEdge(ivec2 a, ivec2 b) {
   float best = 0.0;
   for (int k = 0; k <= steps; ++k) {
     ivec2 t = steps == 0 ? a : a + ivec2(roundDiv(k * d.x, steps), roundDiv(k * d.y, steps));
-    best = max(best, texelFetch(densityMap, t, 0).r);
+    best = max(best, sampleMapAt(t));
   }
   return best;
 }

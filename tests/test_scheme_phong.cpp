@@ -76,9 +76,7 @@ class FlatReference : public Scheme {
   }
   const SchemeInfo& info() const override { return info_; }
   float maxLevel(const ParamValues& v) const override { return phong_.maxLevel(v); }
-  SchemeTexture preprocess(const Heightfield& hf, const ParamValues& v) const override {
-    return phong_.preprocess(hf, v);
-  }
+  SampleMap sampleMap(const Heightfield& hf, const ParamValues& v) const override { return phong_.sampleMap(hf, v); }
   void update(FrameUniforms& f, const ParamValues& v) const override { phong_.update(f, v); }
 
  private:

@@ -29,6 +29,7 @@
 #include "metrics/gpu_raycast.h"
 #include "render/renderer.h"
 #include "render/terrain_fit.h"
+#include "schemes/preprocess/density_map.h"
 #include "schemes/registry.h"
 #include "sha256.h"
 #include "shaders/shared.h"
@@ -429,4 +430,28 @@ TEST(TiledLimits, DevicesCommandPrintsTheTiledLimit) {
   EXPECT_NE(o.text.find("largest terrain in pages of 1023 cells: " + side + " x " + side + " samples"),
             std::string::npos)
       << o.text;
+}
+
+// A per-sample map (density's, phong's) lives in the heights' pages: read back from pages spread
+// over four arrays it is densityMap's floats, and both schemes draw the paged terrain as the single
+// image. Before, the map was one image of the terrain's size, which a terrain past one image cannot be.
+TEST_F(TiledHeightfield, PerSampleMapsInPagesAreTheHostMapAndDrawAsTheSingleImage) {
+  const Heightfield& single = wideTerrain();
+  const Heightfield pages = paged(single, kPage);
+  RenderSettings several = settings();
+  several.testPageLayers = 64;  // 234 pages in 4 arrays
+  Renderer a(lbtest::gpu(), single, settings()), b(lbtest::gpu(), pages, several);
+  for (const char* name : {"density", "phong"}) {
+    const Scheme& s = *findScheme(name);
+    const ParamValues params{{"threshold", 0.001}, {"scale", 30.0}};
+    a.setScheme(s, params);
+    b.setScheme(s, params);
+    const std::vector<float> want = densityMap(single, 0.001f, 30.0f);
+    const SchemeTexture ta = a.readSchemeTexture(), tb = b.readSchemeTexture();
+    EXPECT_EQ(ta.rgba, want) << name;
+    EXPECT_EQ(tb.rgba, want) << name;
+    // The densities vary: a map of one value would pass the equality above with a wrong layout.
+    EXPECT_GT(std::set<float>(want.begin(), want.end()).size(), 1000u);
+    for (const CameraPose& pose : poses()) EXPECT_TRUE(outputs(a, pose) == outputs(b, pose)) << name;
+  }
 }

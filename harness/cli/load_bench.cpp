@@ -132,6 +132,14 @@ struct SchemeOutput {
 bool schemeStage(const Scheme& scheme, const ParamValues& params, const Heightfield& hf, int grid, SchemeOutput& out) {
   out.tex =
       scheme.info().compute.empty() ? scheme.preprocessGrid(hf, params, grid) : scheme.computeReference(hf, params);
+  // A per-sample map, made whole here (the renderer makes it page by page): the same floats.
+  if (const SampleMap map = scheme.sampleMap(hf, params)) {
+    std::vector<float> whole(size_t(hf.width) * size_t(hf.height));
+    parallelRows(hf.height, [&](int z0, int z1) {
+      for (int z = z0; z < z1; ++z) map.row(z, 0, hf.width, &whole[size_t(z) * size_t(hf.width)]);
+    });
+    out.tex = redTexture(hf.width, hf.height, std::move(whole));
+  }
   if (scheme.info().path == DrawPath::InstancedGrid) out.lod = scheme.instancedLod(hf, params);
   return !out.tex.rgba.empty() || out.lod;
 }

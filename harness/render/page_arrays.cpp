@@ -42,14 +42,14 @@ void writePageDescriptors(Context& ctx, VkDescriptorSet set, uint32_t arraysBind
 
 std::vector<Image> uploadPageArrays(Context& ctx, uint32_t w, uint32_t h, VkFormat format, uint32_t texelBytes,
                                     int count, uint32_t perArray, MemoryTag tag,
-                                    const std::function<void(int page, void* dst)>& fill) {
+                                    const std::function<void(int page, void* dst)>& fill, VkImageUsageFlags usage) {
   std::vector<Image> arrays;
   const uint64_t pageBytes = uint64_t(w) * h * texelBytes;
   const uint32_t layersPerBatch = uint32_t(std::max<uint64_t>(1, kStagingBytes / pageBytes));
   for (int first = 0; first < count; first += int(perArray)) {
     const int layers = std::min(int(perArray), count - first);
     Image img = createImageArray(ctx, w, h, uint32_t(layers), format,
-                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, tag);
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | usage, tag);
     Buffer staging = createBuffer(ctx, VkDeviceSize(std::min<uint64_t>(layers, layersPerBatch) * pageBytes),
                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, {GpuResource::Staging});
     for (int b = 0; b < layers; b += int(layersPerBatch)) {

@@ -13,9 +13,10 @@ struct Context;
 
 // `count` pages of w x h texels of `texelBytes` each, uploaded through a bounded staging buffer:
 // fill(p, dst) writes page p's texels, row-major. Arrays are left SHADER_READ_ONLY_OPTIMAL.
+// `usage` adds to SAMPLED | TRANSFER_DST (TRANSFER_SRC for a map tests read back).
 std::vector<Image> uploadPageArrays(Context& ctx, uint32_t w, uint32_t h, VkFormat format, uint32_t texelBytes,
                                     int count, uint32_t perArray, MemoryTag tag,
-                                    const std::function<void(int page, void* dst)>& fill);
+                                    const std::function<void(int page, void* dst)>& fill, VkImageUsageFlags usage = 0);
 
 // Writes `slots` elements of the arrays' combined-image-sampler binding (those past the arrays repeat
 // the first) and the table's storage-buffer binding of `set`.

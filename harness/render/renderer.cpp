@@ -13,6 +13,7 @@
 #include "render/compute_pass.h"
 #include "render/image_io.h"
 #include "render/lod_state.h"
+#include "render/sample_map_pages.h"
 #include "shaders/footprint.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
@@ -323,6 +324,8 @@ std::vector<float> Renderer::capturedLevels() {
 
 SchemeTexture Renderer::readSchemeTexture() {
   finish();
+  if (!sampleMap_.empty())
+    return {terrain_.width, terrain_.height, readSampleMapPages(ctx_, terrainCopy_->heights, sampleMap_), 1};
   return {int(schemeTex_.width), int(schemeTex_.height), readImageRgba32f(ctx_, schemeTex_, schemeTexChannels_),
           schemeTexChannels_};
 }

@@ -67,7 +67,8 @@ class Renderer {
   TriangleHistogram measureHistogram(const CameraPose& view, const CameraPose& lod, FrameResult* result = nullptr,
                                      bool keepMesh = true);
   std::vector<float> renderErrorMap(const CameraPose& view, const CameraPose& lod);
-  // The scheme texture (CPU preprocessing or compute pass output) read back from the GPU.
+  // The scheme texture (CPU preprocessing or compute pass output) read back from the GPU; for a
+  // scheme with a per-sample map, that map (one channel, row-major over the samples).
   SchemeTexture readSchemeTexture();
 
   const RenderSettings& settings() const { return settings_; }
@@ -120,7 +121,8 @@ class Renderer {
   Image color_, errorTarget_, depth_, schemeTex_;
   // The heightfield's pages and their table, the normal map (render/device_terrain.h).
   std::shared_ptr<const DeviceTerrain> terrainCopy_;
-  int schemeTexChannels_ = 4;  // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
+  int schemeTexChannels_ = 4;     // SchemeTexture::channels of schemeTex_ (1: R32_SFLOAT)
+  std::vector<Image> sampleMap_;  // the scheme's per-sample map in the heights' pages (render/sample_map_pages.h)
   SetupCosts setupCosts_;
   Buffer histogram_, readback_, uniforms_;
   VkDeviceSize uniformStride_ = 0;

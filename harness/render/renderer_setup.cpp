@@ -11,6 +11,7 @@
 #include "render/device_terrain.h"
 #include "render/pipeline.h"
 #include "render/renderer.h"
+#include "render/sample_map_pages.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
 #include "vk/context.h"
@@ -90,6 +91,7 @@ void Renderer::createDescriptors() {
   const VkShaderStageFlags all = layoutStages(ctx_);
   std::vector<DescriptorBinding> layout = heightBindings(all);
   for (const DescriptorBinding& b : normalBindings(VK_SHADER_STAGE_FRAGMENT_BIT)) layout.push_back(b);
+  layout.push_back(sampleMapBinding(all));
   layout.insert(layout.end(), {{LB_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, all},
                                {LB_BINDING_SCHEME_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},
                                {LB_BINDING_PATCH_BOUNDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, all},
@@ -130,6 +132,9 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   path_ = makePathDrawer(env);
   meshStages_ = !path_->stages().mesh.empty();
   schemeTex_ = {};
+  sampleMap_.clear();
+  if (const SampleMap map = scheme.sampleMap(terrain_, params_))
+    sampleMap_ = createSampleMapPages(ctx_, terrainCopy_->heights, map, tag(GpuResource::SchemeTables));
   // TRANSFER_SRC: readSchemeTexture() lets tests compare it with a CPU reference.
   const VkImageUsageFlags texUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (!scheme.info().compute.empty()) {
@@ -185,6 +190,7 @@ void Renderer::setScheme(const Scheme& scheme, const ParamValues& params) {
   vkUpdateDescriptorSets(ctx_.device, uint32_t(std::size(writes)), writes, 0, nullptr);
   writeHeightDescriptors(ctx_, bindings_.set, terrainCopy_->heights, sampler_);
   writeNormalDescriptors(ctx_, bindings_.set, terrainCopy_->normals, sampler_);
+  writeSampleMapDescriptors(ctx_, bindings_.set, sampleMap_, terrainCopy_->heights, sampler_);
   bindPathBuffers();
 }
 

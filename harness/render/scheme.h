@@ -1,6 +1,7 @@
 #pragma once
 // The scheme interface (docs/design.md, Schemes): everything that differs between LOD methods.
 // Terrain, camera, shading and instrumentation belong to the renderer and are shared.
+#include <functional>
 #include <glm/vec2.hpp>
 #include <map>
 #include <memory>
@@ -98,6 +99,17 @@ struct SchemeTexture {
   int channels = 4;
 };
 
+// Optional per-sample map: one float per heightfield sample (density's). The renderer stores it in
+// the heights' pages, the same layout and table (render/sample_map_pages.h), which shaders read
+// with sampleMapAt (shaders/sample_map.glsl): a terrain past one image holds it as it holds its
+// heights. It asks for a row span at a time as it fills each page, so no whole-terrain copy of the
+// map is made on the host. row(z, x0, count, out): samples x0 .. x0 + count - 1 of row z; called
+// from several threads at once.
+struct SampleMap {
+  std::function<void(int z, int x0, int count, float* out)> row;
+  explicit operator bool() const { return bool(row); }
+};
+
 // Optional base mesh a scheme supplies instead of the renderer's uniform N x N grid (non-uniform
 // patch sizes). Patch p uses indices [p * controlPointCount(topology), ...) in this order.
 struct PatchGeometry {
@@ -122,6 +134,9 @@ class Scheme {
   virtual float maxLevel(const ParamValues&) const { return 64.0f; }
   // Load-time preprocessing on the CPU; empty texture when the scheme needs none.
   virtual SchemeTexture preprocess(const Heightfield&, const ParamValues&) const { return {}; }
+  // Load-time per-sample map (SampleMap above); empty when the scheme needs none. It captures the
+  // heightfield, which outlives it.
+  virtual SampleMap sampleMap(const Heightfield&, const ParamValues&) const { return {}; }
   // The same for a scheme whose table follows the base grid (grid x grid patches); the renderer calls this one.
   virtual SchemeTexture preprocessGrid(const Heightfield& hf, const ParamValues& v, int /*grid*/) const {
     return preprocess(hf, v);

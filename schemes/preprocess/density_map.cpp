@@ -27,6 +27,27 @@ inline int roundDiv(int num, int den) {
   return num < 0 ? -q : q;
 }
 
+// Densities of samples x0 .. x0 + count - 1 of one row from the normalised rows above, at and below
+// it, whose element 0 is column `first` (only columns clamp(x, 1, w - 2) + {-1, 0, 1} are read).
+void densityFromRows(const float* up, const float* mid, const float* down, int first, int w, int x0, int count,
+                     float threshold, float scale, float* out) {
+  for (int x = x0; x < x0 + count; ++x) {
+    const int cx = std::clamp(x, 1, w - 2) - first;  // border: nearest interior
+    const float c = mid[cx];
+    const float horizontal = variation(mid[cx - 1], c, mid[cx + 1]);
+    const float vertical = variation(up[cx], c, down[cx]);
+    const float firstDiagonal = variation(down[cx - 1], c, up[cx + 1]);
+    const float secondDiagonal = variation(up[cx - 1], c, down[cx + 1]);
+    float density = 0.0f;
+    if (horizontal >= threshold) density += kAxisWeight * horizontal;
+    if (vertical >= threshold) density += kAxisWeight * vertical;
+    if (firstDiagonal >= threshold) density += kDiagonalWeight * firstDiagonal;
+    if (secondDiagonal >= threshold) density += kDiagonalWeight * secondDiagonal;
+    density *= scale;
+    out[x - x0] = std::max(std::min(density, 1.0f), kMinDensity);
+  }
+}
+
 }  // namespace
 
 std::vector<float> densityMap(const Heightfield& hf, float threshold, float scale) {
@@ -52,27 +73,30 @@ std::vector<float> densityMap(const Heightfield& hf, float threshold, float scal
     };
     for (int z = z0; z < z1; ++z) {
       const int cz = std::clamp(z, 1, h - 2);  // border: nearest interior
-      const float* up = row(cz - 1);
-      const float* mid = row(cz);
-      const float* down = row(cz + 1);
-      for (int x = 0; x < w; ++x) {
-        const int cx = std::clamp(x, 1, w - 2);
-        const float c = mid[cx];
-        const float horizontal = variation(mid[cx - 1], c, mid[cx + 1]);
-        const float vertical = variation(up[cx], c, down[cx]);
-        const float firstDiagonal = variation(down[cx - 1], c, up[cx + 1]);
-        const float secondDiagonal = variation(up[cx - 1], c, down[cx + 1]);
-        float density = 0.0f;
-        if (horizontal >= threshold) density += kAxisWeight * horizontal;
-        if (vertical >= threshold) density += kAxisWeight * vertical;
-        if (firstDiagonal >= threshold) density += kDiagonalWeight * firstDiagonal;
-        if (secondDiagonal >= threshold) density += kDiagonalWeight * secondDiagonal;
-        density *= scale;
-        out[size_t(z) * size_t(w) + size_t(x)] = std::max(std::min(density, 1.0f), kMinDensity);
-      }
+      densityFromRows(row(cz - 1), row(cz), row(cz + 1), 0, w, 0, w, threshold, scale, &out[size_t(z) * size_t(w)]);
     }
   });
   return out;
+}
+
+void densityRow(const Heightfield& hf, float threshold, float scale, int z, int x0, int count, float* out) {
+  const int w = hf.width, h = hf.height;
+  if (w < 3 || h < 3) {
+    std::fill(out, out + count, kMinDensity);
+    return;
+  }
+  const float range = hf.maxHeight - hf.minHeight;
+  // The columns the span reads, normalised as densityMap does (the same floats).
+  const int lo = std::clamp(x0, 1, w - 2) - 1, hi = std::clamp(x0 + count - 1, 1, w - 2) + 1;
+  const int n = hi - lo + 1;
+  std::vector<float> rows(size_t(n) * 3);
+  const int cz = std::clamp(z, 1, h - 2);
+  for (int k = 0; k < 3; ++k) {
+    const float* src = &hf.h[size_t(cz - 1 + k) * size_t(w) + size_t(lo)];
+    for (int i = 0; i < n; ++i)
+      rows[size_t(k) * size_t(n) + size_t(i)] = range > 0 ? (src[i] - hf.minHeight) / range : 0.0f;
+  }
+  densityFromRows(rows.data(), rows.data() + n, rows.data() + 2 * n, lo, w, x0, count, threshold, scale, out);
 }
 
 int gridTexel(int i, int n, int size) {

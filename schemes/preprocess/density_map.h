@@ -19,6 +19,9 @@ constexpr float kMinDensity = 1.0f / 255.0f;  // the seed's clamp minimum (one s
 // clamped to [1/255, 1]. Samples on the border lack neighbours and copy the nearest interior sample
 // (a terrain's border is a real silhouette; the SDK sample wrote the minimum there because its maps tile).
 std::vector<float> densityMap(const Heightfield& hf, float threshold, float scale);
+// Samples x0 .. x0 + count - 1 (inside the terrain) of row z of densityMap, the same floats, into out:
+// what the renderer asks for page by page, so that no whole-terrain map exists on the host.
+void densityRow(const Heightfield& hf, float threshold, float scale, int z, int x0, int count, float* out);
 
 // Texel of grid vertex index i on an axis of `size` samples divided into n patches:
 // round(i * (size - 1) / n), in integer arithmetic so shaders/density.glsl gets the same texel.
