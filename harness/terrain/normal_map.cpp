@@ -35,10 +35,22 @@ uint16_t floatToHalf(float f) {
 }
 
 float halfToFloat(uint16_t h) {
-  const float sign = h & 0x8000 ? -1.0f : 1.0f;
-  int exp = (h >> 10) & 0x1f, mant = h & 0x3ff;
-  if (exp == 0) return sign * std::ldexp(float(mant), -24);
-  return sign * std::ldexp(float(mant | 0x400), exp - 25);  // exp 31 (inf) never stored
+  // Every half is a float exactly: a normal one by moving its fields (the exponent rebiased from 15
+  // to 127, the mantissa 13 bits up), a subnormal one as mant x 2^-24 (a power of two: exact). No
+  // ldexp: it was a library call per texel, most of the coarse levels' time.
+  const uint32_t sign = uint32_t(h & 0x8000) << 16, exp = (h >> 10) & 0x1fu, mant = h & 0x3ffu;
+  float f;
+  if (exp == 0) {
+    f = float(mant) * 5.9604644775390625e-8f;  // 2^-24
+    uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    bits |= sign;
+    std::memcpy(&f, &bits, 4);
+    return f;
+  }
+  const uint32_t bits = sign | (exp + 112u) << 23 | mant << 13;  // exp 31 (inf) never stored
+  std::memcpy(&f, &bits, 4);
+  return f;
 }
 
 static void addCoarserLevels(NormalMap& nm);
