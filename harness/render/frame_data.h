@@ -64,6 +64,9 @@ struct RenderSettings {
   // Testing only: with pages, the map's level whose chain is also one image (0: the first that
   // fits, as a map past one image gets; past the map's levels: none, every pixel from the pages).
   int testNormalCoarseFrom = 0;
+  // Testing only: the mesh capture holds at most this many triangles (0: what one storage buffer of
+  // 2 GiB holds, 44.7 M), so a small frame overflows it as only the largest frames do otherwise.
+  uint32_t testMeshCaptureMost = 0;
 };
 
 // Counters of the pipeline-statistics query around a frame's terrain draws.

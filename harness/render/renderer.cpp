@@ -10,6 +10,7 @@
 
 #include "camera/camera_matrices.h"
 #include "camera/camera_path.h"
+#include "error.h"
 #include "render/compute_pass.h"
 #include "render/image_io.h"
 #include "render/lod_state.h"
@@ -61,10 +62,17 @@ void Renderer::prepareFrame(int slotIndex, const CameraPose& view, const CameraP
   slot.prepareMs = nowMs() - start;
 }
 
+// The most triangles the capture holds: one storage buffer of at most 2 GiB, 48 bytes a triangle.
+uint32_t Renderer::meshCaptureMost() const {
+  return settings_.testMeshCaptureMost > 0 ? settings_.testMeshCaptureMost : 0x7fffffffu / 48;
+}
+
 void Renderer::prepareMeshCapture(uint64_t triangles) {
-  if (triangles > meshCapacity_) {  // measurement passes run after finish(): nothing reads the old buffer
-    meshCapacity_ = uint32_t(std::min<uint64_t>(triangles + triangles / 4, 0x7fffffffu / 48));
-    if (triangles > meshCapacity_) throw std::runtime_error("mesh capture: too many triangles to capture");
+  // A frame of more triangles than the largest capture (a fine configuration of a tuned search on
+  // a large terrain) still draws and counts them all; only its mesh is left out (meshLost_).
+  const uint32_t room = uint32_t(std::min<uint64_t>(triangles + triangles / 4, meshCaptureMost()));
+  if (triangles > meshCapacity_ && room > meshCapacity_) {
+    meshCapacity_ = room;  // measurement passes run after finish(): nothing reads the old buffer
     mesh_ = createReadBackBuffer(ctx_, 16 + VkDeviceSize(meshCapacity_) * 48, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                  tag(GpuResource::Capture));
     bindPathBuffers();
@@ -284,13 +292,16 @@ TriangleHistogram Renderer::measureHistogram(const CameraPose& view, const Camer
     takeCompleted();
   }
   capturedMesh_.clear();
+  meshLost_ = 0;
   if (mesh) {
     const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
-    if (head[0] > head[1])
+    if (head[0] > head[1] && head[1] < meshCaptureMost())
       throw std::logic_error("mesh capture: " + std::to_string(head[0]) + " triangles drawn, room for " +
                              std::to_string(head[1]));
+    if (head[0] > head[1]) meshLost_ = head[0];
   }
-  if (mesh && keepMesh) {  // millions of vertices at 1080p on a large terrain: copied only for a reader
+  if (mesh && keepMesh &&
+      meshLost_ == 0) {  // millions of vertices at 1080p on a large terrain: copied only for a reader
     const auto* head = static_cast<const uint32_t*>(mesh_.mapped);
     const auto* v = reinterpret_cast<const glm::vec4*>(static_cast<const char*>(mesh_.mapped) + 16);
     capturedMesh_.reserve(size_t(head[0]) * 3);
@@ -320,6 +331,14 @@ std::vector<float> Renderer::capturedLevels() {
   const Buffer& capture = path_ && path_->buffers().capture ? *path_->buffers().capture : placeholders_[1];
   const auto* p = static_cast<const float*>(capture.mapped);
   return std::vector<float>(p, p + capture.size / sizeof(float));
+}
+
+const std::vector<glm::vec3>& Renderer::capturedMesh() const {
+  if (meshLost_ > 0)
+    throw FeatureMissing("mesh capture: the frame drew " + std::to_string(meshLost_) +
+                         " triangles, the capture holds at most " + std::to_string(meshCaptureMost()) +
+                         " (one storage buffer of 2 GiB)");
+  return capturedMesh_;
 }
 
 SchemeTexture Renderer::readSchemeTexture() {

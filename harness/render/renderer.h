@@ -86,7 +86,9 @@ class Renderer {
   bool statefulLod() const;  // GpuLod::convergeLimit > 0: measured by replaying its updates
   // Paths with instances: every triangle's three world vertices the last measureHistogram drew
   // (captured by its geometry shader); empty on the tessellation path and after keepMesh false.
-  const std::vector<glm::vec3>& capturedMesh() const { return capturedMesh_; }
+  // Throws FeatureMissing when the last histogram pass drew more triangles than the capture holds
+  // (its counts and histogram are whole; only the mesh is left out).
+  const std::vector<glm::vec3>& capturedMesh() const;
   // Device memory this renderer and its path hold now, by resource (vk/gpu_memory.h): what a case's
   // summary.memory records.
   // The terrain's copy (heights, normal map) counts in full, kept from an earlier renderer or not.
@@ -144,7 +146,9 @@ class Renderer {
   Buffer mesh_;
   uint32_t meshCapacity_ = 0;
   uint64_t meshAtLeast_ = 0;  // triangles a histogram pass drew past the capture's room: the next one's least
+  uint64_t meshLost_ = 0;     // triangles the last histogram pass drew past the largest capture (0: none)
   bool captureMeshNext_ = false;
+  uint32_t meshCaptureMost() const;
   std::vector<glm::vec3> capturedMesh_;
 };
 
