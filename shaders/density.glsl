@@ -32,9 +32,10 @@ float maxDensityAlongEdge(ivec2 a, ivec2 b) {
   ivec2 d = b - a;
   int steps = max(abs(d.x), abs(d.y));
   float best = 0.0;
+  SampleCursor cursor = sampleCursor();
   for (int k = 0; k <= steps; ++k) {
     ivec2 t = steps == 0 ? a : a + ivec2(roundDiv(k * d.x, steps), roundDiv(k * d.y, steps));
-    best = max(best, sampleMapAt(t));
+    best = max(best, sampleMapAt(t, cursor));
   }
   return best;
 }
