@@ -19,7 +19,7 @@
 #define LB_BINDING_HEIGHT_TABLE 14  // heightfield pages: HeightTableHeader, then one entry per page
 #define LB_BINDING_NORMAL_TABLE 15  // normal map pages: a header, then one ivec4 per level (normals.glsl)
 #define LB_BINDING_NORMAL_PAGES 16  // normal map pages: LB_NORMAL_ARRAYS RG16F 2D array images (normals.glsl)
-#define LB_BINDING_SAMPLE_MAP 17    // a scheme's per-sample map in the heights' pages: LB_HEIGHT_ARRAYS R32F arrays (sample_map.glsl)
+#define LB_BINDING_SAMPLE_MAP 17    // a scheme's per-sample map in the heights' pages (sample_map.glsl)
 
 // The heightfield's pages (terrain/page_layout.h, docs/tiled-heightfield.md): a descriptor array of
 // this many page arrays (those a terrain does not need repeat the first), and per page one table
