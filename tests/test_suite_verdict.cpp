@@ -159,6 +159,23 @@ TEST(SuiteVerdict, AnOverAccurateSchemeIsComparedWithANote) {
   EXPECT_EQ(verdictJson(v)["workloads"][0]["notes"]["C"], "more accurate than the target at its coarsest");
 }
 
+TEST(SuiteVerdict, ASchemeAtAnUpperBoundOfItsCostIsNeverBeaten) {
+  // C costs twice A's, far outside the interval; but its cost is an upper bound (its coarsest
+  // setting is already more accurate than the target), so A's win over it is not established.
+  SplitMix64 rng{6};
+  Workload w{"w", {timings("A", 1.0, 3, 30, 0.01, 0.02, rng), timings("C", 2.0, 3, 30, 0.01, 0.02, rng)}};
+  EXPECT_TRUE(suiteVerdict({w}).workloads[0].verdict());  // without the bound: A wins
+  w.schemes[1].upperBound = true;
+  const SuiteVerdict v = suiteVerdict({w});
+  const WorkloadResult& r = v.workloads[0];
+  EXPECT_FALSE(r.verdict());
+  EXPECT_EQ(r.tied, (std::vector<std::string>{"A", "C"}));
+  EXPECT_EQ(r.bounded, std::vector<std::string>{"C"});
+  EXPECT_GT(r.ratio.at("C").lo, 1.9);
+  EXPECT_EQ(v.schemes[0].wins + v.schemes[1].wins, 0);
+  EXPECT_EQ(verdictJson(v)["workloads"][0]["tied_at_an_upper_bound"], nlohmann::json::array({"C"}));
+}
+
 TEST(SuiteVerdict, RefusesRaggedTimings) {
   SchemeTimings a{"A", {{1, 1, 1}, {1, 1}}, ""};
   EXPECT_THROW(suiteVerdict({{"w", {a}}}), std::invalid_argument);

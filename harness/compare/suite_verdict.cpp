@@ -118,7 +118,12 @@ SuiteVerdict suiteVerdict(const std::vector<Workload>& workloads, double confide
         res.ratio[s.scheme] = d.at(confidence);
       }
       const Interval& r = res.ratio[s.scheme];
-      if (s.scheme == res.cheapest || std::isnan(r.lo) || r.lo <= 1.0 + margin) res.tied.push_back(s.scheme);
+      if (s.scheme == res.cheapest || std::isnan(r.lo) || r.lo <= 1.0 + margin) {
+        res.tied.push_back(s.scheme);
+      } else if (s.upperBound) {
+        res.tied.push_back(s.scheme);
+        res.bounded.push_back(s.scheme);
+      }
       pieces[s.scheme].push_back({mine, best});
       ++schemes[s.scheme].workloads;
     }
@@ -163,7 +168,8 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
                "cost = geometric mean over repetitions of each repetition's mean GPU ms; ratio to the workload's "
                "cheapest with Welch's t interval on the logs of the repetition means; across workloads the "
                "geometric mean of the ratios with a Welch-Satterthwaite t interval; overlapping intervals are a "
-               "tie, never a win; with a margin m, an interval whose lower bound is at most 1 + m ties too"}};
+               "tie, never a win; with a margin m, an interval whose lower bound is at most 1 + m ties too; a "
+               "scheme whose cost is an upper bound (its tuning space ends before the target) ties the cheapest"}};
   json ws = json::array();
   for (const WorkloadResult& w : v.workloads) {
     json r = json::object();
@@ -174,6 +180,7 @@ nlohmann::json verdictJson(const SuiteVerdict& v) {
                            : w.verdict()      ? w.cheapest
                                               : "no verdict"},
                {"tied", w.tied},
+               {"tied_at_an_upper_bound", w.bounded},
                {"no_interval", w.noInterval},
                {"cost_ms", w.costMs},
                {"ratio", r},
@@ -252,6 +259,7 @@ std::vector<Workload> runWorkloads(const RunData& run) {
           s.note = "more accurate than the target at its coarsest: " + c->matched.value("param", std::string("value")) +
                    " " + c->matched["value"].dump() + " reached " + c->matched["achieved"].dump() +
                    " (its cost is an upper bound)";
+        s.upperBound = !s.note.empty();
         s.reps = repetitions(c->frames);
         if (s.reps.empty()) s.missing = "no gpu_ms in the case's frames";
       }
@@ -292,7 +300,11 @@ int verdictCommand(const std::vector<std::string>& runDirs, double confidence, d
           w.cheapest.empty() ? "no scheme ran"
           : w.verdict()      ? w.cheapest + " cheapest, every other interval above 1"
                              : "no verdict: " + std::to_string(w.tied.size()) + " schemes tie" +
-                              (margin > 0 ? " (within the margin " + std::to_string(margin).substr(0, 5) + ")" : "");
+                              (margin > 0 ? " (within the margin " + std::to_string(margin).substr(0, 5) + ")" : "") +
+                              (w.bounded.empty() ? ""
+                                                 : " (" + std::to_string(w.bounded.size()) +
+                                                       " at an upper bound of their cost: their tuning space ends "
+                                                       "before the target)");
       if (!w.noInterval.empty())
         what += " (" + std::to_string(w.noInterval.size()) + " with fewer than 2 repetitions: no interval)";
       std::printf("%s: %s\n", w.id.c_str(), what.c_str());

@@ -34,6 +34,10 @@ struct SchemeTimings {
   std::vector<std::vector<double>> reps;
   std::string missing;
   std::string note;  // compared with a caveat (e.g. more accurate than the target at its coarsest)
+  // Its cost is an upper bound: the coarsest configuration of its tuning space is already more
+  // accurate than the target, so past that space it might cost less. It ties the cheapest however
+  // far its interval lies above it: a win over it is not established.
+  bool upperBound = false;
 };
 
 struct Workload {
@@ -54,6 +58,7 @@ struct WorkloadResult {
   std::map<std::string, std::string> missing;
   std::map<std::string, std::string> notes;  // SchemeTimings::note of the schemes compared
   std::vector<std::string> tied;             // the cheapest and every scheme whose interval reaches 1 (or has none)
+  std::vector<std::string> bounded;          // of the tied, those only because their cost is an upper bound
   std::vector<std::string> noInterval;       // schemes (or the cheapest) with fewer than 2 repetitions
   bool verdict() const { return tied.size() == 1; }
 };
