@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "compare/run_data.h"
 #include "compare/suite_verdict.h"
 #include "random.h"
 
@@ -174,6 +175,39 @@ TEST(SuiteVerdict, ASchemeAtAnUpperBoundOfItsCostIsNeverBeaten) {
   EXPECT_GT(r.ratio.at("C").lo, 1.9);
   EXPECT_EQ(v.schemes[0].wins + v.schemes[1].wins, 0);
   EXPECT_EQ(verdictJson(v)["workloads"][0]["tied_at_an_upper_bound"], nlohmann::json::array({"C"}));
+}
+
+// From case records: a matched case whose coarsest setting was already under the target (as the
+// search writes it: unreachable, achieved below the target) is compared at an upper bound; one
+// whose finest setting stayed above the target is missing.
+TEST(SuiteVerdict, CaseRecordsMarkAnOverAccurateMatchAsAnUpperBound) {
+  RunData run;
+  auto add = [&](const std::string& scheme, double ms, nlohmann::json matched) {
+    CaseData c;
+    c.id = scheme + "_t_flyover_64x36";
+    c.status = "ok";
+    c.scheme = scheme;
+    c.terrain = "t";
+    c.path = "flyover.csv";
+    c.width = 64;
+    c.height = 36;
+    c.matched = std::move(matched);
+    for (int rep = 0; rep < 3; ++rep)
+      for (int f = 0; f < 4; ++f) c.frames.push_back({{"frame", f}, {"gpu_ms", ms * (1.0 + 0.001 * rep)}});
+    run.cases[c.id] = c;
+  };
+  add("A", 1.0, {{"reachable", true}, {"achieved", 0.98}, {"target", 1.0}});
+  add("B", 3.0, {{"reachable", false}, {"achieved", 0.4}, {"target", 1.0}, {"param", "tri_size"}, {"value", 64}});
+  add("C", 2.0, {{"reachable", false}, {"achieved", 1.5}, {"target", 1.0}, {"param", "tri_size"}, {"value", 0.5}});
+  const std::vector<Workload> ws = runWorkloads(run);
+  ASSERT_EQ(ws.size(), 1u);
+  const SuiteVerdict v = suiteVerdict(ws);
+  const WorkloadResult& r = v.workloads[0];
+  EXPECT_EQ(r.cheapest, "A");
+  EXPECT_EQ(r.bounded, std::vector<std::string>{"B"});
+  EXPECT_FALSE(r.verdict());
+  ASSERT_EQ(r.missing.count("C"), 1u);
+  EXPECT_NE(r.missing.at("C").find("target unreachable"), std::string::npos) << r.missing.at("C");
 }
 
 TEST(SuiteVerdict, RefusesRaggedTimings) {
