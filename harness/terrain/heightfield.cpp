@@ -170,6 +170,152 @@ float hybridMultifractal(float x, float z, const Octave* oct, int octaves) {
   return uplift * kUpliftScale + ridged * ridged + detail * ridged;
 }
 
+// The same noise several samples at a time (GCC vector extensions), every lane computing exactly
+// the scalar expressions above in the same order, so the same bits: 8 lanes where the processor
+// has AVX2 (chosen at run time: the static build targets baseline x86-64), else 4 (SSE2). No
+// fused multiply-add is formed (FMA is not enabled, and a product rounds before its sum as above).
+// Generating is the largest stage of a large terrain's load (65537^2: 86-134 s on 16-32 cores one
+// sample at a time).
+typedef float F4 __attribute__((vector_size(16)));
+typedef int32_t I4 __attribute__((vector_size(16)));
+typedef uint32_t U4 __attribute__((vector_size(16)));
+typedef float F8 __attribute__((vector_size(32)));
+typedef int32_t I8 __attribute__((vector_size(32)));
+typedef uint32_t U8 __attribute__((vector_size(32)));
+template <class F>
+struct Lane;
+template <>
+struct Lane<F4> {
+  using I = I4;
+  using U = U4;
+};
+template <>
+struct Lane<F8> {
+  using I = I8;
+  using U = U8;
+};
+#define LB_LANE inline __attribute__((always_inline))
+// The 8-lane templates return 32-byte vectors; they are always inlined into the AVX2 function,
+// so the note that such a return's ABI differs without AVX concerns no call that is made.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <class U>
+LB_LANE U mixLanes(U x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+template <class F, class I = typename Lane<F>::I>
+LB_LANE I floorLanes(F v) {
+  const I i = __builtin_convertvector(v, I);
+  return i + (v < __builtin_convertvector(i, F));  // a true lane is -1
+}
+
+template <class F, class I = typename Lane<F>::I, class U = typename Lane<F>::U>
+LB_LANE U hashLanes(I x, I z, uint32_t seed) {
+  return mixLanes<U>(U(x) * 0x8da6b343u ^ mixLanes<U>(U(z) * 0xd8163841u ^ seed));
+}
+
+template <class F, class U = typename Lane<F>::U>
+LB_LANE F gradDotLanes(U h, F dx, F dz) {
+  constexpr float kD = 0.70710678f;
+  static constexpr float kGrad[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {kD, kD}, {-kD, kD}, {kD, -kD}, {-kD, -kD}};
+  F g0, g1;
+  if constexpr (sizeof(F) == 32) {  // the table's 8 entries in one vector: one permute a lane
+    const F x = {kGrad[0][0], kGrad[1][0], kGrad[2][0], kGrad[3][0],
+                 kGrad[4][0], kGrad[5][0], kGrad[6][0], kGrad[7][0]};
+    const F z = {kGrad[0][1], kGrad[1][1], kGrad[2][1], kGrad[3][1],
+                 kGrad[4][1], kGrad[5][1], kGrad[6][1], kGrad[7][1]};
+    g0 = __builtin_shuffle(x, h >> 29);
+    g1 = __builtin_shuffle(z, h >> 29);
+  } else {
+    for (int k = 0; k < int(sizeof(F) / sizeof(float)); ++k) {
+      g0[k] = kGrad[h[k] >> 29][0];
+      g1[k] = kGrad[h[k] >> 29][1];
+    }
+  }
+  return g0 * dx + g1 * dz;
+}
+
+template <class F>
+LB_LANE F fadeLanes(F t) {
+  return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
+
+template <class F>
+LB_LANE F mixLanesF(F a, F b, F t) {
+  return a * (1.0f - t) + b * t;
+}
+
+template <class F, class I = typename Lane<F>::I>
+LB_LANE F noiseLanes(F x, F z, uint32_t seed) {
+  const I xi = floorLanes<F>(x), zi = floorLanes<F>(z);
+  const F fx = x - __builtin_convertvector(xi, F), fz = z - __builtin_convertvector(zi, F);
+  const F n00 = gradDotLanes<F>(hashLanes<F>(xi, zi, seed), fx, fz);
+  const F n10 = gradDotLanes<F>(hashLanes<F>(xi + 1, zi, seed), fx - 1.0f, fz);
+  const F n01 = gradDotLanes<F>(hashLanes<F>(xi, zi + 1, seed), fx, fz - 1.0f);
+  const F n11 = gradDotLanes<F>(hashLanes<F>(xi + 1, zi + 1, seed), fx - 1.0f, fz - 1.0f);
+  const F u = fadeLanes(fx), v = fadeLanes(fz);
+  return mixLanesF(mixLanesF(n00, n10, u), mixLanesF(n01, n11, u), v) * kNoiseScale;
+}
+
+template <class F, class U = typename Lane<F>::U>
+LB_LANE F clamp01(F v) {  // std::clamp(v, 0, 1): lo if v < lo, else hi if hi < v, else v
+  const F zero = v * 0.0f - v * 0.0f, one = zero + 1.0f;  // every lane 0 and 1 (v finite)
+  v = v < zero ? zero : v;
+  return one < v ? one : v;
+}
+
+template <class F, class U = typename Lane<F>::U>
+LB_LANE F multifractalLanes(F x, F z, const Octave* oct, int octaves) {
+  F uplift = x * 0.0f, ridged = uplift, detail = uplift, weight = uplift + 1.0f;
+  for (int i = 0; i < octaves; ++i) {
+    const F n = noiseLanes<F>(x + oct[i].offsetX, z + oct[i].offsetZ, oct[i].seed);
+    if (i == 0) {
+      uplift = 0.5f + 0.5f * n;
+      weight = clamp01<F>(uplift * kRidgeGain);
+    } else if (i <= kRidgedOctaves) {
+      F ridge = kRidgeOffset - F(U(n) & 0x7fffffffu);
+      ridge *= ridge * weight;
+      weight = clamp01<F>(ridge * kRidgeGain);
+      ridged += ridge * oct[i].amplitude;
+    } else {
+      detail += n * oct[i].amplitude;
+    }
+    const F rx = kRotC * x - kRotS * z;
+    z = kRotS * x + kRotC * z;
+    x = rx;
+  }
+  return uplift * kUpliftScale + ridged * ridged + detail * ridged;
+}
+
+// Samples [0, k) of a row of `size` where k is the largest multiple of the lane count; returns k.
+template <class F>
+LB_LANE int rowLanes(float* row, int size, float zs, float step, const Octave* oct, int octaves) {
+  constexpr int n = int(sizeof(F) / sizeof(float));
+  int x = 0;
+  for (; x + n <= size; x += n) {
+    F xs, zv;
+    for (int k = 0; k < n; ++k) xs[k] = float(x + k) * step, zv[k] = zs;
+    const F v = multifractalLanes<F>(xs, zv, oct, octaves);
+    for (int k = 0; k < n; ++k) row[x + k] = v[k];
+  }
+  return x;
+}
+
+__attribute__((target("avx2"))) int rowLanesAvx2(float* row, int size, float zs, float step, const Octave* oct,
+                                                 int octaves) {
+  return rowLanes<F8>(row, size, zs, step, oct, octaves);
+}
+
+int rowLanesBase(float* row, int size, float zs, float step, const Octave* oct, int octaves) {
+  return rowLanes<F4>(row, size, zs, step, oct, octaves);
+}
+
 void requireFinite(float v, const char* what, bool allowZero) {
   if (!(std::isfinite(v) && (v > 0.0f || (allowZero && v == 0.0f))))
     throw InputError("terrain: " + std::string(what) + " " + std::to_string(v) + " must be a finite number " +
@@ -178,7 +324,7 @@ void requireFinite(float v, const char* what, bool allowZero) {
 
 }  // namespace
 
-Heightfield makeProcedural(const TerrainSpec& spec) {
+Heightfield makeProcedural(const TerrainSpec& spec, int lanes) {
   const int maxSize = spec.page > 0 ? kMaxPagedSize : kMaxSize;
   if (spec.size < kMinSize || spec.size > maxSize)
     throw InputError("terrain: procedural size " + std::to_string(spec.size) + " is outside [" +
@@ -211,10 +357,13 @@ Heightfield makeProcedural(const TerrainSpec& spec) {
   hf.extent = spec.extent;
   hf.h.resize(size_t(spec.size) * size_t(spec.size));
   const float step = kBaseFrequency / float(spec.size - 1);
+  auto laneRow = lanes >= 8 && __builtin_cpu_supports("avx2") ? rowLanesAvx2 : lanes >= 4 ? rowLanesBase : nullptr;
   auto fillRows = [&](int z0, int z1) {
     for (int z = z0; z < z1; ++z) {
       float* row = &hf.h[size_t(z) * size_t(spec.size)];
-      for (int x = 0; x < spec.size; ++x) row[x] = hybridMultifractal(float(x) * step, float(z) * step, oct, octaves);
+      int x = 0;
+      if (laneRow) x = laneRow(row, spec.size, float(z) * step, step, oct, octaves);
+      for (; x < spec.size; ++x) row[x] = hybridMultifractal(float(x) * step, float(z) * step, oct, octaves);
     }
   };
   // Samples are independent, so splitting rows across threads cannot change a single bit; it only

@@ -80,7 +80,9 @@ struct TerrainSpec {
 constexpr float kMaxAbsHeight = 1e5f;
 
 // Deterministic ridged + fBm hybrid (Musgrave) in [0,1], scaled by heightScale. Same seed -> same bits.
-Heightfield makeProcedural(const TerrainSpec& spec);
+// Samples are evaluated 8 at a time where the processor has AVX2, else 4 (SSE2). lanes (testing)
+// caps that: 1 is the one-at-a-time reference the others must equal bit for bit.
+Heightfield makeProcedural(const TerrainSpec& spec, int lanes = 8);
 // Loads .hgt (SRTM big-endian int16, N^2 samples: 1201^2 or 3601^2 tiles or crops of them; voids
 // -32768 filled), 16-bit PNG, raw R16 / R32F
 // and any raster GDAL reads (type gdal, terrain/gdal_loader.h).
