@@ -220,24 +220,24 @@ LB_LANE U hashLanes(I x, I z, uint32_t seed) {
   return mixLanes<U>(U(x) * 0x8da6b343u ^ mixLanes<U>(U(z) * 0xd8163841u ^ seed));
 }
 
+// The gradient table of gradDot() without a lookup a lane: by a permute of the table (GCC), or
+// by selects on the index bits (i < 4 an axis, bit 1: z, bit 0: negative; i >= 4 a diagonal, bit
+// 0: x negative, bit 1: z negative). The same constants, so the same products.
 template <class F, class U = typename Lane<F>::U>
 LB_LANE F gradDotLanes(U h, F dx, F dz) {
   constexpr float kD = 0.70710678f;
-  static constexpr float kGrad[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {kD, kD}, {-kD, kD}, {kD, -kD}, {-kD, -kD}};
-  F g0, g1;
-  if constexpr (sizeof(F) == 32) {  // the table's 8 entries in one vector: one permute a lane
-    const F x = {kGrad[0][0], kGrad[1][0], kGrad[2][0], kGrad[3][0],
-                 kGrad[4][0], kGrad[5][0], kGrad[6][0], kGrad[7][0]};
-    const F z = {kGrad[0][1], kGrad[1][1], kGrad[2][1], kGrad[3][1],
-                 kGrad[4][1], kGrad[5][1], kGrad[6][1], kGrad[7][1]};
-    g0 = __builtin_shuffle(x, h >> 29);
-    g1 = __builtin_shuffle(z, h >> 29);
-  } else {
-    for (int k = 0; k < int(sizeof(F) / sizeof(float)); ++k) {
-      g0[k] = kGrad[h[k] >> 29][0];
-      g1[k] = kGrad[h[k] >> 29][1];
-    }
+  const U i = h >> 29;
+  const F zero = dx * 0.0f - dx * 0.0f, one = zero + 1.0f, minusOne = zero - 1.0f, d = zero + kD, minusD = zero - kD;
+#if defined(__GNUC__) && !defined(__clang__)
+  if constexpr (sizeof(F) == 32) {  // GCC: the 8 entries in one vector, one permute a lane (AVX2 vpermps)
+    const F x = {1, -1, 0, 0, kD, -kD, kD, -kD}, z = {0, 0, 1, -1, kD, kD, -kD, -kD};
+    return __builtin_shuffle(x, i) * dx + __builtin_shuffle(z, i) * dz;
   }
+#endif
+  const auto b0 = (i & 1u) != 0u, b1 = (i & 2u) != 0u, b2 = (i & 4u) != 0u;
+  const F axis = b0 ? minusOne : one;
+  const F g0 = b2 ? (b0 ? minusD : d) : (b1 ? zero : axis);
+  const F g1 = b2 ? (b1 ? minusD : d) : (b1 ? axis : zero);
   return g0 * dx + g1 * dz;
 }
 
