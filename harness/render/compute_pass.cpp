@@ -48,14 +48,15 @@ void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, co
 }
 
 std::vector<float> readImageRgba32f(Context& ctx, const Image& image, int channels) {
-  const VkDeviceSize bytes = VkDeviceSize(image.width) * image.height * VkDeviceSize(channels) * sizeof(float);
+  const VkDeviceSize bytes =
+      VkDeviceSize(image.width) * image.height * image.layers * VkDeviceSize(channels) * sizeof(float);
   Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, {GpuResource::Staging});
   runOneShot(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
     region.imageExtent = {image.width, image.height, 1};
     vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
     imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,

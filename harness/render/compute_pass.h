@@ -21,6 +21,7 @@ void runComputePass(Context& ctx, const std::string& stem, VkSampler sampler, co
 
 // Copies an RGBA32F image in SHADER_READ_ONLY_OPTIMAL (with TRANSFER_SRC usage) to the host,
 // width * height * 4 floats, and leaves it in SHADER_READ_ONLY_OPTIMAL. Set-up and tests only.
+// Every layer, one after the other (an array's pages: render/sample_map_pages.h).
 std::vector<float> readImageRgba32f(Context& ctx, const Image& image, int channels = 4);  // 1: an R32_SFLOAT image
 
 }  // namespace lb

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "render/compute_pass.h"
 #include "render/page_arrays.h"
 #include "render/scheme.h"
 #include "shaders/shared.h"
@@ -60,24 +61,8 @@ std::vector<float> readSampleMapPages(Context& ctx, const HeightPages& heights, 
   const size_t pageFloats = l.pageSamples();
   std::vector<float> paged;
   for (const Image& a : arrays) {
-    const VkDeviceSize bytes = VkDeviceSize(pageFloats) * a.layers * sizeof(float);
-    Buffer staging = createReadBackBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, {GpuResource::Staging});
-    runOneShot(ctx, [&](VkCommandBuffer cmd) {
-      imageBarrier(cmd, a.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-      VkBufferImageCopy region{};
-      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, a.layers};
-      region.imageExtent = {a.width, a.height, 1};
-      vkCmdCopyImageToBuffer(cmd, a.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
-      imageBarrier(cmd, a.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
-                   VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-      memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                    VK_ACCESS_2_HOST_READ_BIT);
-    });
-    const float* src = static_cast<const float*>(staging.mapped);
-    paged.insert(paged.end(), src, src + pageFloats * a.layers);
+    const std::vector<float> layers = readImageRgba32f(ctx, a, 1);
+    paged.insert(paged.end(), layers.begin(), layers.end());
   }
   std::vector<float> out(size_t(l.samplesX) * size_t(l.samplesZ));
   for (int z = 0; z < l.samplesZ; ++z)
