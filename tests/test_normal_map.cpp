@@ -13,11 +13,13 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "dem_crop.h"
 #include "gpu_fixture.h"
 #include "metrics/image_metrics.h"
 #include "render/image_io.h"
+#include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 
 using namespace lb;
@@ -68,6 +70,52 @@ TEST(NormalMap, HalfConversionRoundTripsEveryFiniteHalfAndRoundsToNearest) {
 
 // A plane's gradient is the same at every texel (away from the clamped border), so its normal map
 // gives the plane's normal everywhere inside, whatever the filter weights.
+// computeNormalMap converts eight texels at a time where the processor has F16C: every level's
+// texels must be the one-at-a-time conversion's, bit for bit, on what a conversion gets wrong:
+// gradients past the half range (clamped), below its normal range (subnormal halves and zeros of
+// both signs), ties, and odd and even, square and non-square sizes (a coarse level's last row or
+// column then means three fine ones, which stay one at a time).
+TEST(NormalMap, LanesGiveTheSameTexelsAsOneAtATime) {
+  if (!__builtin_cpu_supports("avx") || !__builtin_cpu_supports("f16c"))
+    GTEST_SKIP() << "this processor has no F16C: computeNormalMap takes no lanes here";
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  int compared = 0;
+  for (auto [w, h] : {std::pair{37, 23}, {64, 64}, {65, 3}, {2, 9}, {19, 2}, {130, 67}}) {
+    Heightfield hf;
+    hf.width = w;
+    hf.height = h;
+    hf.extent = 1.0f;
+    hf.h.resize(size_t(w) * size_t(h));
+    for (size_t i = 0; i < hf.h.size(); ++i) {
+      switch (i % 5) {
+        case 0:
+          hf.h[i] = 1e4f * unit(rng);
+          break;  // steep: past 65504 once divided by the spacing
+        case 1:
+          hf.h[i] = 1e-9f * unit(rng);
+          break;  // subnormal gradients
+        case 2:
+          hf.h[i] = 0.0f;
+          break;
+        case 3:
+          hf.h[i] = -0.0f;
+          break;
+        default:
+          hf.h[i] = float(int(64 * unit(rng))) / 4096.0f;  // coarse steps: ties in the means
+      }
+    }
+    hf.updateRange();
+    const NormalMap one = computeNormalMap(hf, false), lanes = computeNormalMap(hf, true);
+    ASSERT_EQ(one.levels(), lanes.levels());
+    for (int k = 0; k < one.levels(); ++k) {
+      EXPECT_EQ(one.levelTexels(k), lanes.levelTexels(k)) << w << " x " << h << ", level " << k;
+      compared += int(one.levelTexels(k).size());
+    }
+  }
+  EXPECT_GT(compared, 30000);
+}
+
 TEST(NormalMap, PlaneGivesItsNormalInside) {
   Heightfield hf;
   hf.width = hf.height = 65;

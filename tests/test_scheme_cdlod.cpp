@@ -554,6 +554,30 @@ TEST(SchemeCdlod, RandomPosesKeepTheRules) {
 
 }  // namespace
 
+namespace {
+
+// Every node's error the plain way: the largest deviation of its cells' two triangles, cell by cell.
+std::vector<std::vector<float>> nodeErrorsCellByCell(const Heightfield& hf, const MinMaxPyramid& pyr, double q) {
+  std::vector<std::vector<float>> out;
+  for (int p = 0; p <= pyr.top(); ++p) {
+    const double s = std::ldexp(1.0, p);
+    const int cols = int(std::ceil(pyr.cellsX / s)), rows = int(std::ceil(pyr.cellsZ / s));
+    std::vector<float> want(size_t(pyr.nx[size_t(p)]) * size_t(pyr.nz[size_t(p)]), 0.0f);
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const double x0 = c * s / q, x1 = std::min((c + 1) * s, pyr.cellsX) / q;
+        const double z0 = r * s / q, z1 = std::min((r + 1) * s, pyr.cellsZ) / q;
+        const glm::dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
+        float& m = want[pyr.index(p, c / pyr.base, r / pyr.base)];
+        m = std::max(m, float(std::max(triangleDeviation(hf, v00, v10, v11), triangleDeviation(hf, v00, v11, v01))));
+      }
+    out.push_back(std::move(want));
+  }
+  return out;
+}
+
+}  // namespace
+
 // cdlod-sse's node errors read node sizes that are multiples of 16 cells from one table of
 // 16-cell blocks (schemes/preprocess/node_errors.cpp): every node's error equals the largest
 // deviation of its cells' two triangles, scanned here cell by cell, for each node size and
@@ -571,22 +595,52 @@ TEST(SchemeCdlodSse, NodeErrorsEqualACellByCellScanForEveryNodeSize) {
       const MinMaxPyramid pyr = buildMinMaxPyramid(hf, q, base, 1, glm::dvec2(spec.extent / (96 * q)));
       const NodeErrors e = computeNodeErrors(hf, pyr, q);
       ASSERT_EQ(e.dev.size(), pyr.nx.size());
-      for (int p = 0; p <= pyr.top(); ++p) {
-        const double s = std::ldexp(1.0, p);
-        const int cols = int(std::ceil(pyr.cellsX / s)), rows = int(std::ceil(pyr.cellsZ / s));
-        std::vector<float> want(size_t(pyr.nx[size_t(p)]) * size_t(pyr.nz[size_t(p)]), 0.0f);
-        for (int r = 0; r < rows; ++r)
-          for (int c = 0; c < cols; ++c) {
-            const double x0 = c * s / q, x1 = std::min((c + 1) * s, pyr.cellsX) / q;
-            const double z0 = r * s / q, z1 = std::min((r + 1) * s, pyr.cellsZ) / q;
-            const glm::dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
-            float& m = want[pyr.index(p, c / base, r / base)];
-            m = std::max(m,
-                         float(std::max(triangleDeviation(hf, v00, v10, v11), triangleDeviation(hf, v00, v11, v01))));
-          }
-        EXPECT_EQ(e.dev[size_t(p)], want) << "q " << q << ", node size " << base << ", level " << p;
-      }
+      const std::vector<std::vector<float>> want = nodeErrorsCellByCell(hf, pyr, q);
+      for (int p = 0; p <= pyr.top(); ++p)
+        EXPECT_EQ(e.dev[size_t(p)], want[size_t(p)]) << "q " << q << ", node size " << base << ", level " << p;
     }
+}
+
+// The node errors skip every cell whose bound (a sample scan against the corners' bilinear patch
+// plus a quarter of the corners' twist) is below its block's largest exact deviation so far. The
+// bound must hold, and its slack cover the rounding, on what breaks a loose one: heights far from
+// zero (a plateau at 8,800 m), single-sample spikes and pits, a flat block (every bound equal,
+// zero), cells that are not whole samples (cells_per_texel 2 and 0.5 at the levels where a cell is
+// a fraction of a sample or not on one), and 1 to 7 threads (bands of 1 to 16 rows per block).
+TEST(SchemeCdlodSse, PrunedNodeErrorsAreTheSameBitsOnSpikesOffsetsAndFlats) {
+  TerrainSpec spec;
+  spec.size = 129;
+  spec.seed = 21;
+  spec.extent = 800;
+  spec.heightScale = 120;
+  Heightfield hf = makeProcedural(spec);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> at(0, 128);
+  for (float& h : hf.h) h += 8800.0f;
+  for (int k = 0; k < 40; ++k) hf.h[size_t(at(rng)) * 129 + size_t(at(rng))] += (k % 2 ? 300.0f : -300.0f);
+  for (int z = 0; z < 40; ++z)
+    for (int x = 0; x < 40; ++x) hf.h[size_t(z) * 129 + size_t(x)] = 8810.0f;
+  hf.updateRange();
+  const char* before = std::getenv("LODBENCH_THREADS");
+  const std::string saved = before ? before : "";
+  for (const char* threads : {"1", "3", "7"}) {
+    setenv("LODBENCH_THREADS", threads, 1);
+    hf.h.back() += 1.0f;  // other heights, so that the tables' cache (keyed by their hash) is not read
+    for (double q : {1.0, 2.0, 0.5}) {
+      const int base = 16;
+      const MinMaxPyramid pyr = buildMinMaxPyramid(hf, q, base, 1, glm::dvec2(spec.extent / (128 * q)));
+      const NodeErrors e = computeNodeErrors(hf, pyr, q);
+      const std::vector<std::vector<float>> want = nodeErrorsCellByCell(hf, pyr, q);
+      ASSERT_EQ(e.dev.size(), want.size());
+      for (size_t p = 0; p < want.size(); ++p)
+        EXPECT_EQ(e.dev[p], want[p]) << threads << " threads, q " << q << ", level " << p;
+      EXPECT_GT(*std::max_element(want[2].begin(), want[2].end()), 100.0f);  // the spikes are in the table
+    }
+  }
+  if (before)
+    setenv("LODBENCH_THREADS", saved.c_str(), 1);
+  else
+    unsetenv("LODBENCH_THREADS");
 }
 
 // The top levels of cdlod-sse's node errors scan each triangle's samples in bands of rows on the

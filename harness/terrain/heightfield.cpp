@@ -69,9 +69,25 @@ void Heightfield::updateRange() {
     minHeight = maxHeight = 0.0f;
     return;
   }
-  const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
-  minHeight = *lo;
-  maxHeight = *hi;
+  // Bands of rows on the terrain threads (a 65537^2 terrain is 4.3 G samples): min and max are
+  // exact and order-free, so the range is the same whatever the bands.
+  const int rows = width > 0 && size_t(width) * size_t(height) == h.size() ? height : 1;
+  const size_t perRow = h.size() / size_t(rows);
+  std::vector<std::pair<float, float>> band(size_t(rows), {h[0], h[0]});
+  parallelRows(
+      rows,
+      [&](int z0, int z1) {
+        const auto [lo, hi] =
+            std::minmax_element(h.begin() + ptrdiff_t(size_t(z0) * perRow), h.begin() + ptrdiff_t(size_t(z1) * perRow));
+        band[size_t(z0)] = {*lo, *hi};
+      },
+      256);
+  minHeight = band[0].first;
+  maxHeight = band[0].second;
+  for (const auto& [lo, hi] : band) {  // ties as minmax_element breaks them: the first min, the last max
+    if (lo < minHeight) minHeight = lo;
+    if (!(hi < maxHeight)) maxHeight = hi;
+  }
 }
 
 namespace {

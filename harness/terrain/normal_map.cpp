@@ -1,5 +1,7 @@
 #include "terrain/normal_map.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -53,9 +55,68 @@ float halfToFloat(uint16_t h) {
   return f;
 }
 
-static void addCoarserLevels(NormalMap& nm);
+namespace {
 
-NormalMap computeNormalMap(const Heightfield& hf) {
+// The processor converts float to half itself (F16C, with AVX): its round to nearest even is
+// floatToHalf's, so the lanes below give the same bits, once the magnitude is clamped as there.
+bool halfLanes() {
+  return __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+}
+
+__attribute__((target("avx,f16c"))) inline __m128i toHalf8(__m256 f) {
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  const __m256 mag = _mm256_min_ps(_mm256_andnot_ps(sign, f), _mm256_set1_ps(65504.0f));
+  return _mm256_cvtps_ph(_mm256_or_ps(mag, _mm256_and_ps(sign, f)), _MM_FROUND_TO_NEAREST_INT);
+}
+
+// Level 0's texels x in [1, 1 + 8k) of one row (each with both neighbours inside the row): the
+// same float operations as the scalar texel, eight at a time; returns 8k.
+__attribute__((target("avx,f16c"))) int gradientLanes(const float* row, const float* up, const float* down,
+                                                      uint16_t* out, int w, float dx, float dz) {
+  const __m256 vdx = _mm256_set1_ps(dx), vdz = _mm256_set1_ps(dz);
+  int x = 1;
+  for (; x + 8 <= w - 1; x += 8) {
+    const __m256 gx = _mm256_div_ps(_mm256_sub_ps(_mm256_loadu_ps(row + x - 1), _mm256_loadu_ps(row + x + 1)), vdx);
+    const __m256 gz = _mm256_div_ps(_mm256_sub_ps(_mm256_loadu_ps(up + x), _mm256_loadu_ps(down + x)), vdz);
+    const __m128i hx = toHalf8(gx), hz = toHalf8(gz);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 2 * size_t(x)), _mm_unpacklo_epi16(hx, hz));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 2 * size_t(x) + 8), _mm_unpackhi_epi16(hx, hz));
+  }
+  return x - 1;
+}
+
+__attribute__((target("avx,f16c"))) inline __m256 load(const uint16_t* p) {
+  return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+
+// One coarse row's texels [0, 4k) from two fine rows, each the mean of 2 x 2 fine texels summed
+// in the scalar order (row by row, left to right, from 0): texel pairs (gx, gz) are the lanes, the
+// even and odd fine texels of four coarse texels come out as coarse texels 0, 2, 1, 3 and go back
+// in order after the conversion. Returns 4k (at most `count`, the coarse texels with two fine ones).
+__attribute__((target("avx,f16c"))) int halveLanes(const uint16_t* f0, const uint16_t* f1, uint16_t* out, int count) {
+  const __m256 four = _mm256_set1_ps(4.0f);
+  int x = 0;
+  for (; x + 4 <= count; x += 4) {
+    const uint16_t* a = f0 + 4 * size_t(x);  // 8 fine texels, 16 halves, from fine texel 2x
+    const uint16_t* b = f1 + 4 * size_t(x);
+    const __m256d a0 = _mm256_castps_pd(load(a)), a1 = _mm256_castps_pd(load(a + 8));
+    const __m256d b0 = _mm256_castps_pd(load(b)), b1 = _mm256_castps_pd(load(b + 8));
+    __m256 sum = _mm256_setzero_ps();
+    sum = _mm256_add_ps(sum, _mm256_castpd_ps(_mm256_shuffle_pd(a0, a1, 0x0)));  // row 0, even
+    sum = _mm256_add_ps(sum, _mm256_castpd_ps(_mm256_shuffle_pd(a0, a1, 0xf)));  // row 0, odd
+    sum = _mm256_add_ps(sum, _mm256_castpd_ps(_mm256_shuffle_pd(b0, b1, 0x0)));  // row 1, even
+    sum = _mm256_add_ps(sum, _mm256_castpd_ps(_mm256_shuffle_pd(b0, b1, 0xf)));  // row 1, odd
+    const __m128i h = toHalf8(_mm256_div_ps(sum, four));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 2 * size_t(x)), _mm_shuffle_epi32(h, _MM_SHUFFLE(3, 1, 2, 0)));
+  }
+  return x;
+}
+
+}  // namespace
+
+static void addCoarserLevels(NormalMap& nm, bool lanes);
+
+NormalMap computeNormalMap(const Heightfield& hf, bool lanes) {
   NormalMap nm;
   nm.width = hf.width;
   nm.height = hf.height;
@@ -66,28 +127,32 @@ NormalMap computeNormalMap(const Heightfield& hf) {
   // Neighbours are read through row pointers with the border clamp of Heightfield::at() done once
   // per row and column, not per read: the same samples, so the same texels.
   const int w = hf.width, h = hf.height;
+  const float dx = 2.0f * tx, dz = 2.0f * tz;
+  const bool f16c = lanes && halfLanes();
   parallelRows(h, [&](int z0, int z1) {
     for (int z = z0; z < z1; ++z) {
       const float* row = &hf.h[size_t(z) * size_t(w)];
       const float* up = &hf.h[size_t(std::max(z - 1, 0)) * size_t(w)];
       const float* down = &hf.h[size_t(std::min(z + 1, h - 1)) * size_t(w)];
       uint16_t* out = &nm.texels[size_t(z) * size_t(w) * 2];
-      for (int x = 0; x < w; ++x) {
+      // Texels [1, end) eight at a time where the processor converts to half itself; the rest here.
+      const int end = f16c && w > 2 ? 1 + gradientLanes(row, up, down, out, w, dx, dz) : 1;
+      auto one = [&](int x) {
         const int left = x > 0 ? x - 1 : 0, right = x + 1 < w ? x + 1 : w - 1;
-        float gx = (row[left] - row[right]) / (2.0f * tx);
-        float gz = (up[x] - down[x]) / (2.0f * tz);
-        out[2 * size_t(x)] = floatToHalf(gx);
-        out[2 * size_t(x) + 1] = floatToHalf(gz);
-      }
+        out[2 * size_t(x)] = floatToHalf((row[left] - row[right]) / dx);
+        out[2 * size_t(x) + 1] = floatToHalf((up[x] - down[x]) / dz);
+      };
+      one(0);
+      for (int x = end; x < w; ++x) one(x);
     }
   });
-  addCoarserLevels(nm);
+  addCoarserLevels(nm, lanes);
   return nm;
 }
 
 // Level k from level k - 1: the mean of the texels each covers (the last one of an odd row or
 // column joins the texel before it), in float, rounded to half.
-static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine) {
+static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine, bool lanes) {
   NormalMapLevel out;
   out.width = std::max(1, w / 2);
   out.height = std::max(1, h / 2);
@@ -97,10 +162,18 @@ static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine) {
     const int last = i == n - 1 ? fineN - 1 : std::min(2 * i + 1, fineN - 1);
     return std::pair<int, int>(first, last);
   };
+  const bool f16c = lanes && halfLanes();
   parallelRows(out.height, [&](int z0, int z1) {
     for (int z = z0; z < z1; ++z) {
       const auto [za, zb] = span(z, out.height, h);
-      for (int x = 0; x < out.width; ++x) {
+      // Coarse texels of two fine rows and two fine columns (all but an odd size's last) in lanes.
+      const int pairs = std::min(out.width, w / 2);
+      const int from = f16c && zb == za + 1 && w >= 2
+                           ? halveLanes(&fine[size_t(za) * size_t(w) * 2], &fine[size_t(zb) * size_t(w) * 2],
+                                        &out.texels[size_t(z) * size_t(out.width) * 2],
+                                        pairs == out.width && w % 2 ? pairs - 1 : pairs)
+                           : 0;
+      for (int x = from; x < out.width; ++x) {
         const auto [xa, xb] = span(x, out.width, w);
         float gx = 0, gz = 0;
         for (int j = za; j <= zb; ++j)
@@ -119,10 +192,10 @@ static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine) {
   return out;
 }
 
-static void addCoarserLevels(NormalMap& nm) {
+static void addCoarserLevels(NormalMap& nm, bool lanes) {
   const int levels = normalMapLevels(nm.width, nm.height);
   for (int k = 1; k < levels; ++k)
-    nm.coarser.push_back(halve(nm.levelWidth(k - 1), nm.levelHeight(k - 1), nm.levelTexels(k - 1)));
+    nm.coarser.push_back(halve(nm.levelWidth(k - 1), nm.levelHeight(k - 1), nm.levelTexels(k - 1), lanes));
 }
 
 // One level's bilinear fetch at texel coordinate u (texel i's centre at i), clamped to the edge.

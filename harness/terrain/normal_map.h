@@ -43,7 +43,9 @@ struct NormalMap {
   const std::vector<uint16_t>& levelTexels(int k) const { return k == 0 ? texels : coarser[size_t(k - 1)].texels; }
 };
 
-NormalMap computeNormalMap(const Heightfield& hf);
+// lanes: eight texels at a time where the processor converts to half (F16C); false: one at a
+// time. The same bits either way (tests/test_normal_map.cpp).
+NormalMap computeNormalMap(const Heightfield& hf, bool lanes = true);
 
 // Unit normal at terrain-local (x, z): bilinear filtering of the texels at texel coordinate
 // t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then normalize(gx, 1, gz),

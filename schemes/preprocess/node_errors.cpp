@@ -1,5 +1,7 @@
 #include "schemes/preprocess/node_errors.h"
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,50 +16,139 @@ namespace lb {
 
 namespace {
 
+// An upper bound on max(triangleDeviation) of the cell's two triangles, for a cell whose corners
+// are samples (x0..x1, z0..z1 integers inside the heightfield); +infinity for any other cell.
+// Let L be the bilinear interpolant of the four corner heights over the cell. Each triangle's
+// plane P equals L on the triangle's two axis-aligned edges, and L - P = -t u (1 - v) over the
+// triangle (t the corner twist h00 - h10 - h01 + h11, u and v in [0, 1] along the axes with
+// u (1 - v) <= 1/4), so |L - P| <= |t| / 4. On every texel cell inside, both B and L are bilinear,
+// so |B - L| is largest at a sample: |B - P| <= max over samples |h - L| + |t| / 4. The slack
+// covers the rounding of both this bound and the exact computation.
+double cellBound(const Heightfield& hf, double x0, double z0, double x1, double z1) {
+  if (x0 != std::floor(x0) || x1 != std::floor(x1) || z0 != std::floor(z0) || z1 != std::floor(z1) ||
+      x1 > hf.width - 1 || z1 > hf.height - 1 || x1 <= x0 || z1 <= z0)
+    return INFINITY;
+  const int ix0 = int(x0), ix1 = int(x1), iz0 = int(z0), iz1 = int(z1);
+  const size_t w = size_t(hf.width);
+  const double h00 = hf.h[size_t(iz0) * w + size_t(ix0)], h10 = hf.h[size_t(iz0) * w + size_t(ix1)];
+  const double h01 = hf.h[size_t(iz1) * w + size_t(ix0)], h11 = hf.h[size_t(iz1) * w + size_t(ix1)];
+  const double a = h10 - h00, b = h01 - h00, t = h00 - h10 - h01 + h11;
+  const double sx = 1.0 / (x1 - x0), sz = 1.0 / (z1 - z0);
+  // Two samples at a time (SSE2, every x86-64): the bound needs no exact rounding, its slack covers it.
+  const __m128d absMask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffll)), two = _mm_set1_pd(2.0);
+  __m128d acc = _mm_setzero_pd();
+  const int last = ix1 - ix0;
+  for (int z = iz0; z <= iz1; ++z) {
+    const double v = (z - iz0) * sz;
+    const double base = h00 + b * v, slope = (a + t * v) * sx;  // L along the row: base + slope (x - x0)
+    const float* row = &hf.h[size_t(z) * w + size_t(ix0)];
+    const __m128d vb = _mm_set1_pd(base), vs = _mm_set1_pd(slope);
+    __m128d iv = _mm_set_pd(1.0, 0.0);
+    int i = 0;
+    for (; i + 1 <= last; i += 2) {
+      const __m128d h = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(row + i))));
+      acc = _mm_max_pd(acc, _mm_and_pd(_mm_sub_pd(h, _mm_add_pd(vb, _mm_mul_pd(vs, iv))), absMask));
+      iv = _mm_add_pd(iv, two);
+    }
+    if (i == last) acc = _mm_max_pd(acc, _mm_set_sd(std::abs(double(row[i]) - (base + slope * i))));
+  }
+  const double r = std::max(_mm_cvtsd_f64(acc), _mm_cvtsd_f64(_mm_unpackhi_pd(acc, acc)));
+  const double bound = r + 0.25 * std::abs(t);
+  return bound + 1e-9 * (std::abs(h00) + std::abs(h10) + std::abs(h01) + std::abs(h11) + bound + 1.0);
+}
+
+// The exact deviation of one cell: the larger of its two triangles'.
+double cellDeviation(const Heightfield& hf, double x0, double z0, double x1, double z1, bool rowsInParallel) {
+  using glm::dvec2;
+  const dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
+  return std::max(triangleDeviation(hf, v00, v10, v11, rowsInParallel),
+                  triangleDeviation(hf, v00, v11, v01, rowsInParallel));
+}
+
 // Per level, the largest deviation of the cells of every block of n x n cells (blocks in rows of
 // `cols / n`, rounded up), levels [p0, p1). The cell scan does not depend on n, so a table for
 // small blocks gives every multiple of it by a max over its blocks.
+// A block's value is a maximum, so a cell whose upper bound (cellBound) is below the largest
+// exact deviation found so far in its block cannot change it: the cell of the largest bound goes
+// first, then only the cells whose bound reaches the largest deviation found so far. The same bits as computing every
+// cell, at a fraction of the cost (the exact edge walk is most of it).
 void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, int n, int p0, int p1,
                 std::vector<std::vector<float>>& dev, std::vector<int>& bx) {
-  using glm::dvec2;
   dev.resize(size_t(p1));
   bx.resize(size_t(p1));
+  const int threads = terrainThreads();
   for (int p = p0; p < p1; ++p) {
     const double s = std::ldexp(1.0, p);
     const int rows = int(std::ceil(cellsZ / s)), cols = int(std::ceil(cellsX / s));
     const int blockCols = (cols + n - 1) / n, blockRows = (rows + n - 1) / n;
-    // Per cell row and block column, so that every level (the coarse ones have few block rows)
-    // spreads over the threads.
-    std::vector<float> rowMax(size_t(rows) * size_t(blockCols), 0.0f);
+    auto cellBox = [&](int r, int c, double& x0, double& z0, double& x1, double& z1) {
+      z0 = r * s / q, z1 = std::min((r + 1) * s, cellsZ) / q;
+      x0 = c * s / q, x1 = std::min((c + 1) * s, cellsX) / q;
+    };
+    std::vector<float>& out = dev[size_t(p)];
+    out.assign(size_t(blockCols) * size_t(blockRows), 0.0f);
+    bx[size_t(p)] = blockCols;
     // The top levels have fewer cell rows than threads, and each of their cells covers a large
     // part of the terrain: there the cells go one after the other and each triangle's samples
     // spread over the threads instead (the same bits either way).
-    const bool fewRows = rows < terrainThreads();
-    auto scanRows = [&](int r0, int r1) {
-      for (int r = r0; r < r1; ++r) {
-        const double z0 = r * s / q, z1 = std::min((r + 1) * s, cellsZ) / q;
+    if (rows < threads) {
+      for (int r = 0; r < rows; ++r)
         for (int c = 0; c < cols; ++c) {
-          const double x0 = c * s / q, x1 = std::min((c + 1) * s, cellsX) / q;
-          const dvec2 v00(x0, z0), v10(x1, z0), v11(x1, z1), v01(x0, z1);
-          const double d =
-              std::max(triangleDeviation(hf, v00, v10, v11, fewRows), triangleDeviation(hf, v00, v11, v01, fewRows));
-          float& m = rowMax[size_t(r) * size_t(blockCols) + size_t(c / n)];
-          m = std::max(m, float(d));
+          double x0, z0, x1, z1;
+          cellBox(r, c, x0, z0, x1, z1);
+          float& m = out[size_t(r / n) * size_t(blockCols) + size_t(c / n)];
+          m = std::max(m, float(cellDeviation(hf, x0, z0, x1, z1, true)));
         }
+      continue;
+    }
+    // Bands of g cell rows inside one block row (g divides n), as many as keep the threads busy;
+    // each band's maximum per block column, then the blocks' over their bands.
+    int g = 1;
+    for (int d = n; d >= 1; --d)
+      if (n % d == 0 && (rows + d - 1) / d >= 2 * threads) {
+        g = d;
+        break;
       }
-    };
-    if (fewRows)
-      scanRows(0, rows);
-    else
-      parallelRows(rows, scanRows, std::max(1, 4096 / std::max(1, cols)));
-    std::vector<float>& out = dev[size_t(p)];
-    out.assign(size_t(blockCols) * size_t(blockRows), 0.0f);
-    for (int r = 0; r < rows; ++r)
+    const int bands = (rows + g - 1) / g;
+    std::vector<float> bandMax(size_t(bands) * size_t(blockCols), 0.0f);
+    parallelRows(
+        bands,
+        [&](int b0, int b1) {
+          std::vector<double> bound;
+          for (int band = b0; band < b1; ++band) {
+            const int r0 = band * g, r1 = std::min(rows, r0 + g);
+            for (int i = 0; i < blockCols; ++i) {
+              const int c0 = i * n, c1 = std::min(cols, c0 + n), w = c1 - c0;
+              bound.assign(size_t((r1 - r0) * w), 0.0);
+              size_t top = 0;
+              for (int r = r0; r < r1; ++r)
+                for (int c = c0; c < c1; ++c) {
+                  double x0, z0, x1, z1;
+                  cellBox(r, c, x0, z0, x1, z1);
+                  const size_t k = size_t((r - r0) * w + (c - c0));
+                  bound[k] = cellBound(hf, x0, z0, x1, z1);
+                  if (bound[k] > bound[top]) top = k;
+                }
+              // The cell of the largest bound first (most often the block's largest deviation),
+              // then every other cell whose bound is not below the largest found so far.
+              auto exact = [&](size_t k) {
+                double x0, z0, x1, z1;
+                cellBox(r0 + int(k) / w, c0 + int(k) % w, x0, z0, x1, z1);
+                return cellDeviation(hf, x0, z0, x1, z1, false);
+              };
+              double worst = exact(top);
+              for (size_t k = 0; k < bound.size(); ++k)
+                if (k != top && bound[k] >= worst) worst = std::max(worst, exact(k));
+              bandMax[size_t(band) * size_t(blockCols) + size_t(i)] = float(worst);
+            }
+          }
+        },
+        std::max(1, 4096 / std::max(1, cols * g)));
+    for (int band = 0; band < bands; ++band)
       for (int i = 0; i < blockCols; ++i) {
-        float& d = out[size_t(r / n) * size_t(blockCols) + size_t(i)];
-        d = std::max(d, rowMax[size_t(r) * size_t(blockCols) + size_t(i)]);
+        float& d = out[size_t(band * g / n) * size_t(blockCols) + size_t(i)];
+        d = std::max(d, bandMax[size_t(band) * size_t(blockCols) + size_t(i)]);
       }
-    bx[size_t(p)] = blockCols;
   }
 }
 
