@@ -157,7 +157,7 @@ TEST(Gdal, EveryHeightTypeGivesItsExactValues) {
     const Heightfield hf = lb::makeHeightfield(gdalSpec(file, 100.0f));
     EXPECT_EQ(hf.width, 3);
     EXPECT_EQ(hf.height, 2);
-    EXPECT_EQ(hf.h, asFloats(c.values));  // row 0 of the raster is z = 0
+    EXPECT_EQ(std::vector<float>(hf.h.begin(), hf.h.end()), asFloats(c.values));  // row 0 of the raster is z = 0
     EXPECT_EQ(hf.extent, 100.0f);
     EXPECT_EQ(hf.source.dataType, name);
     EXPECT_EQ(hf.source.driver, "GTiff");
@@ -272,7 +272,7 @@ TEST(Gdal, OverviewOfTheFileIsUsedWhenPresent) {
   const Heightfield hf = lb::makeHeightfield(s);
   ASSERT_EQ(hf.width, 4);
   ASSERT_EQ(hf.height, 4);
-  EXPECT_EQ(hf.h, stored);
+  EXPECT_EQ(std::vector<float>(hf.h.begin(), hf.h.end()), stored);
   EXPECT_NE(hf.at(0, 0), 5.5f);  // what 2x2 averaging would give
   EXPECT_EQ(hf.source.overviewMethod, "file");
   s.window = {4, 2, 4, 4};  // full-resolution pixels: overview pixels (2, 1) to (3, 2)

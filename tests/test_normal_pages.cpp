@@ -57,7 +57,7 @@ TEST(NormalPageLayout, EveryBilinearReadLiesInOnePageThatStoresTheLevelsTexels) 
         const NormalPageLevel& v = l.levels[size_t(k)];
         ASSERT_EQ(v.width, nm.levelWidth(k));
         ASSERT_EQ(v.height, nm.levelHeight(k));
-        const std::vector<uint16_t>& texels = nm.levelTexels(k);
+        const auto& texels = nm.levelTexels(k);
         // Every clamped texel pair (a, a + 1) of both axes, as shaders/normals.glsl finds its page.
         for (int az = 0; az < v.height; ++az)
           for (int ax = 0; ax < v.width; ++ax) {
@@ -206,7 +206,7 @@ TEST_F(NormalPagesGpu, AMapPastOneImageTakesPages) {
   nm.texels.assign(size_t(nm.width) * 2 * 2, 0);
   for (int w = nm.width, h = nm.height; w > 1 || h > 1;) {
     w = std::max(1, w / 2), h = std::max(1, h / 2);
-    nm.coarser.push_back({w, h, std::vector<uint16_t>(size_t(w) * size_t(h) * 2, 0)});
+    nm.coarser.push_back({w, h, UninitVector<uint16_t>(size_t(w) * size_t(h) * 2, 0)});
   }
   const NormalPages pages = createNormalPages(lbtest::gpu(), nm, {});
   EXPECT_TRUE(pages.paged);

@@ -33,7 +33,8 @@ void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes
 
 using lbtest::inputErrorOf;
 
-uint64_t fnv1a(const std::vector<float>& v) {
+template <class Vector>
+uint64_t fnv1a(const Vector& v) {
   uint64_t hash = 1469598103934665603ull;
   for (float f : v) {
     uint32_t u;

@@ -130,7 +130,7 @@ TEST(PageLayout, PagesCoverEverySampleAndShareTheirBorders) {
   // Every stored sample is the host array's sample at its place (clamped past the edge), so a
   // cell's corners read from its page are Heightfield::at's.
   const Heightfield& hf = wideTerrain();
-  const std::vector<float> all = pagedHeights(hf, l);
+  const UninitVector<float> all = pagedHeights(hf, l);
   ASSERT_EQ(all.size(), l.pageSamples() * size_t(l.pageCount()));
   size_t wrong = 0;
   for (int j = 0; j < l.pagesZ; ++j)

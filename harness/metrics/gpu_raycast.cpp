@@ -99,9 +99,9 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
   // The heights in the renderer's pages (terrain/page_layout.h): the shader finds a cell's corners
   // as the rasterizer's sampling function does.
   pages_ = pageLayout(hf);
-  std::vector<float> paged;  // the one-page case is the host array itself, not copied
+  UninitVector<float> paged;  // the one-page case is the host array itself, not copied
   if (pages_.pageCount() > 1) paged = pagedHeights(hf, pages_);
-  const std::vector<float>& heights = pages_.pageCount() > 1 ? paged : hf.h;
+  const UninitVector<float>& heights = pages_.pageCount() > 1 ? paged : hf.h;
   const VkDeviceSize heightBytes = VkDeviceSize(heights.size()) * sizeof(float);
   if (heightBytes > ctx.props.limits.maxStorageBufferRange)
     throw FeatureMissing("GPU ray cast: the terrain's " + std::to_string(heightBytes) +
@@ -124,7 +124,7 @@ GpuRaycast::GpuRaycast(Context& ctx, const Heightfield& hf, const GpuRaycastOpti
   std::vector<BufferPart> normalLevels;  // every level, level 0 first; offsets in uints (two halves each)
   size_t normalHalves = 0;
   for (int k = 0; k < normals.levels(); ++k) {
-    const std::vector<uint16_t>& texels = normals.levelTexels(k);
+    const auto& texels = normals.levelTexels(k);
     normalTable_.insert(normalTable_.end(), {uint32_t(normalHalves / 2), uint32_t(normals.levelWidth(k)),
                                              uint32_t(normals.levelHeight(k)), 0u});
     normalLevels.push_back({texels.data(), VkDeviceSize(texels.size()) * sizeof(uint16_t)});

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "uninit_vector.h"
+
 namespace lb {
 
 // What a file terrain was read from, recorded in each case file as "terrain.source"
@@ -31,7 +33,7 @@ struct Heightfield {
   int width = 0;           // samples along x
   int height = 0;          // samples along z
   float extent = 1000.0f;  // world size covered along x and z (corner samples sit on the border)
-  std::vector<float> h;    // world-space heights (heightScale applied), row-major, row = z
+  UninitVector<float> h;   // world-space heights (heightScale applied), row-major, row = z
   float minHeight = 0.0f;
   float maxHeight = 0.0f;
   // World x/z of sample (0, 0): the renderer and camera paths place the terrain there, so a far

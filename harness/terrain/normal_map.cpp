@@ -152,7 +152,7 @@ NormalMap computeNormalMap(const Heightfield& hf, bool lanes) {
 
 // Level k from level k - 1: the mean of the texels each covers (the last one of an odd row or
 // column joins the texel before it), in float, rounded to half.
-static NormalMapLevel halve(int w, int h, const std::vector<uint16_t>& fine, bool lanes) {
+static NormalMapLevel halve(int w, int h, const UninitVector<uint16_t>& fine, bool lanes) {
   NormalMapLevel out;
   out.width = std::max(1, w / 2);
   out.height = std::max(1, h / 2);
@@ -201,7 +201,7 @@ static void addCoarserLevels(NormalMap& nm, bool lanes) {
 // One level's bilinear fetch at texel coordinate u (texel i's centre at i), clamped to the edge.
 static glm::vec2 bilinear(const NormalMap& nm, int k, glm::vec2 u) {
   const int w = nm.levelWidth(k), h = nm.levelHeight(k);
-  const std::vector<uint16_t>& texels = nm.levelTexels(k);
+  const auto& texels = nm.levelTexels(k);
   const glm::vec2 fl = glm::floor(u);
   const glm::vec2 f = u - fl;
   const glm::ivec2 i0(fl);

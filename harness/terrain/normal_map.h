@@ -20,6 +20,8 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "uninit_vector.h"
+
 namespace lb {
 
 struct Heightfield;
@@ -30,17 +32,17 @@ struct Heightfield;
 // (nothing is dropped): the mean gradient over the area, which is the gradient of the mean surface.
 struct NormalMapLevel {
   int width = 0, height = 0;
-  std::vector<uint16_t> texels;
+  UninitVector<uint16_t> texels;
 };
 
 struct NormalMap {
   int width = 0, height = 0;            // the heightfield's sample counts
-  std::vector<uint16_t> texels;         // RG16F bit patterns (gx, gz), row-major, row = z: level 0
+  UninitVector<uint16_t> texels;        // RG16F bit patterns (gx, gz), row-major, row = z: level 0
   std::vector<NormalMapLevel> coarser;  // levels 1 .. normalMapLevels(width, height) - 1
   int levels() const { return 1 + int(coarser.size()); }
   int levelWidth(int k) const { return k == 0 ? width : coarser[size_t(k - 1)].width; }
   int levelHeight(int k) const { return k == 0 ? height : coarser[size_t(k - 1)].height; }
-  const std::vector<uint16_t>& levelTexels(int k) const { return k == 0 ? texels : coarser[size_t(k - 1)].texels; }
+  const UninitVector<uint16_t>& levelTexels(int k) const { return k == 0 ? texels : coarser[size_t(k - 1)].texels; }
 };
 
 // lanes: eight texels at a time where the processor converts to half (F16C); false: one at a

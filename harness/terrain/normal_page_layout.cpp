@@ -51,7 +51,7 @@ void copyNormalPage(const NormalMap& nm, const NormalPageLayout& layout, int pag
   while (k > 0 && layout.levels[size_t(k)].first > page) --k;
   const NormalPageLevel& v = layout.levels[size_t(k)];
   const int local = page - v.first, i = local % v.pagesX, j = local / v.pagesX;
-  const std::vector<uint16_t>& texels = nm.levelTexels(k);
+  const auto& texels = nm.levelTexels(k);
   const int n = layout.cells, stored = n + 1;
   for (int z = 0; z < stored; ++z) {
     const int sz = std::min(j * n + z, v.height - 1);

@@ -37,9 +37,9 @@ void copyPage(const Heightfield& hf, const PageLayout& l, int i, int j, float* o
   }
 }
 
-std::vector<float> pagedHeights(const Heightfield& hf, const PageLayout& l) {
+UninitVector<float> pagedHeights(const Heightfield& hf, const PageLayout& l) {
   if (l.pageCount() == 1 && l.storedX() == hf.width && l.storedZ() == hf.height) return hf.h;
-  std::vector<float> out(l.pageSamples() * size_t(l.pageCount()));
+  UninitVector<float> out(l.pageSamples() * size_t(l.pageCount()));
   parallelRows(
       l.pageCount(),
       [&](int p0, int p1) {

@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "uninit_vector.h"
+
 namespace lb {
 
 struct Heightfield;
@@ -41,6 +43,6 @@ PageLayout pageLayout(const Heightfield& hf);  // hf.page
 void copyPage(const Heightfield& hf, const PageLayout& layout, int i, int j, float* out);
 // Every page, page-major (row-major over pages, each as copyPage): the GPU ray cast's heights. For
 // the one-page case this equals the host array.
-std::vector<float> pagedHeights(const Heightfield& hf, const PageLayout& layout);
+UninitVector<float> pagedHeights(const Heightfield& hf, const PageLayout& layout);
 
 }  // namespace lb

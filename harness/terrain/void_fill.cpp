@@ -8,7 +8,7 @@ namespace lb {
 // Fills voids breadth-first from the valid samples inwards: each ring takes the mean of its
 // already-known 4-neighbours. Rings are computed from a snapshot so the result does not depend
 // on scan order, and the whole fill is O(samples) however large the voids are.
-void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht) {
+void fillVoids(UninitVector<float>& h, std::vector<char>& known, int w, int ht) {
   std::vector<size_t> frontier, next;
   auto pushVoidNeighbours = [&](size_t i, std::vector<size_t>& out, std::vector<char>& queued) {
     const int x = int(i % size_t(w)), z = int(i / size_t(w));

@@ -4,10 +4,12 @@
 // same bits.
 #include <vector>
 
+#include "uninit_vector.h"
+
 namespace lb {
 
 // Fills the samples with known[i] == 0 breadth-first from the known ones inwards: each ring takes
 // the mean of its already-known 4-neighbours. Needs at least one known sample; sets known to 1.
-void fillVoids(std::vector<float>& h, std::vector<char>& known, int w, int ht);
+void fillVoids(UninitVector<float>& h, std::vector<char>& known, int w, int ht);
 
 }  // namespace lb
