@@ -3,6 +3,7 @@
 #include <emmintrin.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <list>
@@ -111,11 +112,15 @@ void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, i
       }
     const int bands = (rows + g - 1) / g;
     std::vector<float> bandMax(size_t(bands) * size_t(blockCols), 0.0f);
+    // Bands are handed out one at a time (pruning makes their costs uneven); each writes only
+    // its own entries, so the order they are taken in changes nothing.
+    std::atomic<int> next{0};
+    const int workers = int(std::clamp<int64_t>(int64_t(rows) * cols / 4096, 1, threads));  // small terrains: one
     parallelRows(
-        bands,
-        [&](int b0, int b1) {
+        workers,
+        [&](int, int) {
           std::vector<double> bound;
-          for (int band = b0; band < b1; ++band) {
+          for (int band; (band = next.fetch_add(1)) < bands;) {
             const int r0 = band * g, r1 = std::min(rows, r0 + g);
             for (int i = 0; i < blockCols; ++i) {
               const int c0 = i * n, c1 = std::min(cols, c0 + n), w = c1 - c0;
@@ -143,7 +148,7 @@ void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, i
             }
           }
         },
-        std::max(1, 4096 / std::max(1, cols * g)));
+        1);
     for (int band = 0; band < bands; ++band)
       for (int i = 0; i < blockCols; ++i) {
         float& d = out[size_t(band * g / n) * size_t(blockCols) + size_t(i)];
