@@ -25,16 +25,15 @@ namespace {
 // u (1 - v) <= 1/4), so |L - P| <= |t| / 4. On every texel cell inside, both B and L are bilinear,
 // so |B - L| is largest at a sample: |B - P| <= max over samples |h - L| + |t| / 4. The slack
 // covers the rounding of both this bound and the exact computation.
-double cellBound(const Heightfield& hf, double x0, double z0, double x1, double z1) {
-  if (x0 != std::floor(x0) || x1 != std::floor(x1) || z0 != std::floor(z0) || z1 != std::floor(z1) ||
-      x1 > hf.width - 1 || z1 > hf.height - 1 || x1 <= x0 || z1 <= z0)
-    return INFINITY;
-  const int ix0 = int(x0), ix1 = int(x1), iz0 = int(z0), iz1 = int(z1);
+double sampleCellBound(const Heightfield& hf, int ix0, int iz0, int ix1, int iz1) {
   const size_t w = size_t(hf.width);
   const double h00 = hf.h[size_t(iz0) * w + size_t(ix0)], h10 = hf.h[size_t(iz0) * w + size_t(ix1)];
   const double h01 = hf.h[size_t(iz1) * w + size_t(ix0)], h11 = hf.h[size_t(iz1) * w + size_t(ix1)];
   const double a = h10 - h00, b = h01 - h00, t = h00 - h10 - h01 + h11;
-  const double sx = 1.0 / (x1 - x0), sz = 1.0 / (z1 - z0);
+  const double slack = 1e-9 * (std::abs(h00) + std::abs(h10) + std::abs(h01) + std::abs(h11) + 1.0);
+  // One texel: B is L itself, no sample inside.
+  if (ix1 - ix0 == 1 && iz1 - iz0 == 1) return 0.25 * std::abs(t) * (1.0 + 1e-9) + slack;
+  const double sx = 1.0 / (ix1 - ix0), sz = 1.0 / (iz1 - iz0);
   // Two samples at a time (SSE2, every x86-64): the bound needs no exact rounding, its slack covers it.
   const __m128d absMask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffll)), two = _mm_set1_pd(2.0);
   __m128d acc = _mm_setzero_pd();
@@ -55,7 +54,14 @@ double cellBound(const Heightfield& hf, double x0, double z0, double x1, double 
   }
   const double r = std::max(_mm_cvtsd_f64(acc), _mm_cvtsd_f64(_mm_unpackhi_pd(acc, acc)));
   const double bound = r + 0.25 * std::abs(t);
-  return bound + 1e-9 * (std::abs(h00) + std::abs(h10) + std::abs(h01) + std::abs(h11) + bound + 1.0);
+  return bound * (1.0 + 1e-9) + slack;
+}
+
+double cellBound(const Heightfield& hf, double x0, double z0, double x1, double z1) {
+  if (x0 != std::floor(x0) || x1 != std::floor(x1) || z0 != std::floor(z0) || z1 != std::floor(z1) ||
+      x1 > hf.width - 1 || z1 > hf.height - 1 || x1 <= x0 || z1 <= z0 || x0 < 0 || z0 < 0)
+    return INFINITY;
+  return sampleCellBound(hf, int(x0), int(z0), int(x1), int(z1));
 }
 
 // The exact deviation of one cell: the larger of its two triangles'.
@@ -111,6 +117,17 @@ void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, i
         break;
       }
     const int bands = (rows + g - 1) / g;
+    // Where q is a power of two and a cell a whole number of samples, the cells' corners are the
+    // integers cellBox gives exactly (c s / q = c step, the last clamped to the terrain's last
+    // sample): their bounds skip the conversions. step 0: cellBound checks each cell.
+    int step = 0, lastX = 0, lastZ = 0;
+    if (q == std::ldexp(1.0, std::ilogb(q)) && s / q == std::floor(s / q) && s / q < 1 << 30 &&
+        cellsX / q == std::floor(cellsX / q) && cellsZ / q == std::floor(cellsZ / q) && cellsX / q <= hf.width - 1 &&
+        cellsZ / q <= hf.height - 1) {
+      step = int(s / q);
+      lastX = int(cellsX / q);
+      lastZ = int(cellsZ / q);
+    }
     std::vector<float> bandMax(size_t(bands) * size_t(blockCols), 0.0f);
     // Bands are handed out one at a time (pruning makes their costs uneven); each writes only
     // its own entries, so the order they are taken in changes nothing.
@@ -128,10 +145,15 @@ void scanLevels(const Heightfield& hf, double cellsX, double cellsZ, double q, i
               size_t top = 0;
               for (int r = r0; r < r1; ++r)
                 for (int c = c0; c < c1; ++c) {
-                  double x0, z0, x1, z1;
-                  cellBox(r, c, x0, z0, x1, z1);
                   const size_t k = size_t((r - r0) * w + (c - c0));
-                  bound[k] = cellBound(hf, x0, z0, x1, z1);
+                  if (step > 0) {
+                    bound[k] = sampleCellBound(hf, c * step, r * step, std::min((c + 1) * step, lastX),
+                                               std::min((r + 1) * step, lastZ));
+                  } else {
+                    double x0, z0, x1, z1;
+                    cellBox(r, c, x0, z0, x1, z1);
+                    bound[k] = cellBound(hf, x0, z0, x1, z1);
+                  }
                   if (bound[k] > bound[top]) top = k;
                 }
               // The cell of the largest bound first (most often the block's largest deviation),
