@@ -29,6 +29,7 @@ build=$1 root=$2
 shift 2
 config=configs/suite/gpu-h100.json gpus="" deadline=540 first=""
 if [[ ${1:-} == merge ]]; then
+  [[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
   mapfile -t done < <(ls -d "$root"/shard-* 2>/dev/null | while read -r d; do [[ -f $d.done ]] && echo "$d"; done)
   echo "merging ${#done[@]} finished shards"
   "$build/lodbench" merge --out "$root/merged" "${done[@]}"
@@ -51,6 +52,8 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 export LODBENCH_SHADER_DIR=$build/shaders LODBENCH=$build/lodbench
+# The carried tree has no up-to-date .git: every result records the build's commit from its COMMIT file.
+[[ -f $build/COMMIT ]] && export LODBENCH_GIT_COMMIT=$(cat "$build/COMMIT")
 end=$(( $(date +%s) + deadline ))
 [[ -n $gpus ]] || gpus=$(nvidia-smi -L | wc -l)
 if [[ $gpus == *,* || ! $gpus =~ ^[0-9]+$ ]]; then IFS=, read -ra devices <<<"$gpus"
