@@ -18,7 +18,7 @@ namespace lb {
 namespace {
 
 // An upper bound on max(triangleDeviation) of the cell's two triangles, for a cell whose corners
-// are samples (x0..x1, z0..z1 integers inside the heightfield); +infinity for any other cell.
+// are samples (columns ix0..ix1, rows iz0..iz1 of the heightfield).
 // Let L be the bilinear interpolant of the four corner heights over the cell. Each triangle's
 // plane P equals L on the triangle's two axis-aligned edges, and L - P = -t u (1 - v) over the
 // triangle (t the corner twist h00 - h10 - h01 + h11, u and v in [0, 1] along the axes with
@@ -57,6 +57,7 @@ double sampleCellBound(const Heightfield& hf, int ix0, int iz0, int ix1, int iz1
   return bound * (1.0 + 1e-9) + slack;
 }
 
+// The bound of a cell given in texel coordinates: +infinity for a cell whose corners are not samples.
 double cellBound(const Heightfield& hf, double x0, double z0, double x1, double z1) {
   if (x0 != std::floor(x0) || x1 != std::floor(x1) || z0 != std::floor(z0) || z1 != std::floor(z1) ||
       x1 > hf.width - 1 || z1 > hf.height - 1 || x1 <= x0 || z1 <= z0 || x0 < 0 || z0 < 0)
