@@ -76,8 +76,7 @@ TEST(NormalMap, HalfConversionRoundTripsEveryFiniteHalfAndRoundsToNearest) {
 // both signs), ties, and odd and even, square and non-square sizes (a coarse level's last row or
 // column then means three fine ones, which stay one at a time).
 TEST(NormalMap, LanesGiveTheSameTexelsAsOneAtATime) {
-  if (!__builtin_cpu_supports("avx") || !__builtin_cpu_supports("f16c"))
-    GTEST_SKIP() << "this processor has no F16C: computeNormalMap takes no lanes here";
+  if (!normalMapLanes()) GTEST_SKIP() << "this processor has no F16C: computeNormalMap takes no lanes here";
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   int compared = 0;

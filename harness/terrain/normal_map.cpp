@@ -1,5 +1,6 @@
 #include "terrain/normal_map.h"
 
+#include <cpuid.h>
 #include <immintrin.h>
 
 #include <algorithm>
@@ -59,8 +60,10 @@ namespace {
 
 // The processor converts float to half itself (F16C, with AVX): its round to nearest even is
 // floatToHalf's, so the lanes below give the same bits, once the magnitude is clamped as there.
+// F16C is read from CPUID (leaf 1, ECX bit 29): clang's __builtin_cpu_supports has no "f16c".
 bool halfLanes() {
-  return __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  return __builtin_cpu_supports("avx") && __get_cpuid(1, &a, &b, &c, &d) && (c & (1u << 29)) != 0;
 }
 
 __attribute__((target("avx,f16c"))) inline __m128i toHalf8(__m256 f) {
@@ -113,6 +116,10 @@ __attribute__((target("avx,f16c"))) int halveLanes(const uint16_t* f0, const uin
 }
 
 }  // namespace
+
+bool normalMapLanes() {
+  return halfLanes();
+}
 
 static void addCoarserLevels(NormalMap& nm, bool lanes);
 

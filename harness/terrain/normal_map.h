@@ -48,6 +48,7 @@ struct NormalMap {
 // lanes: eight texels at a time where the processor converts to half (F16C); false: one at a
 // time. The same bits either way (tests/test_normal_map.cpp).
 NormalMap computeNormalMap(const Heightfield& hf, bool lanes = true);
+bool normalMapLanes();  // whether this processor takes the lanes (AVX and F16C)
 
 // Unit normal at terrain-local (x, z): bilinear filtering of the texels at texel coordinate
 // t = clamp(p / extent, 0, 1) * (size - 1) (the centre of texel i is i), then normalize(gx, 1, gz),
