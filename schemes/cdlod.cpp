@@ -11,8 +11,10 @@
 // footprint scaled by 2^l. The root is the smallest power-of-two square holding the lattice;
 // nodes and quadrants wholly past the last sample are never visited (the shader clamps vertices
 // to the border, so a straddling quadrant is drawn clipped). Each node's box is its xz times the
-// range of every sample its bilinear surface touches (a min-max pyramid built once:
-// schemes/preprocess/min_max_pyramid.h).
+// range of every sample its bilinear surface touches (a min-max pyramid:
+// schemes/preprocess/min_max_pyramid.h; with node_cells auto, the levels finer than any node size
+// drawn so far are made when a frame first draws that size, so a 1080p frame on a 65537^2 terrain
+// never holds the 2.9 GB of 4-cell blocks).
 //
 // cdlod's constants, made scale-free. Strugar sets world ranges r_l = V (2^(l+1) - 1) / (2^L - 1)
 // from a view range V; here r_l = 2^l c0 K / t (K = viewport height / (2 tan(fov/2)) from the LOD
@@ -83,12 +85,24 @@ bool outsidePlanes(const Box& b, const glm::dvec4* planes) {
 }
 
 NodeTree::NodeTree(const Heightfield& hf, const Settings& s, std::vector<int> candidates)
-    : s_(s), candidates_(std::move(candidates)) {
+    : s_(s), candidates_(std::move(candidates)), hf_(&hf) {
   pyr_ = buildMinMaxPyramid(hf, s.cellsPerTexel, candidates_.front(), candidates_.back(),
-                            latticeCell(hf.extent, hf.width, hf.height, s.cellsPerTexel));
+                            latticeCell(hf.extent, hf.width, hf.height, s.cellsPerTexel),
+                            finestLevelUsed(candidates_.back()));
   for (int n : candidates_) footprints_.push_back(footprint(n));
   flags_.resize(pyr_.nx.size());
-  for (size_t p = 0; p < pyr_.nx.size(); ++p) flags_[p].assign(size_t(pyr_.nx[p]) * size_t(pyr_.nz[p]), 0);
+  allocateFlags();
+}
+
+int NodeTree::finestLevelUsed(int n) const {
+  // Nodes of n cells sit at pyramid levels from log2(n / base) up; their quadrants' boxes are the
+  // blocks one level finer (level 0's quadrants take their node's).
+  return std::max(0, log2Int(n / candidates_.front()) - 1);
+}
+
+void NodeTree::allocateFlags() const {
+  for (int p = pyr_.built; p <= pyr_.top(); ++p)
+    if (flags_[size_t(p)].empty()) flags_[size_t(p)].assign(size_t(pyr_.nx[size_t(p)]) * size_t(pyr_.nz[size_t(p)]), 0);
 }
 
 void NodeTree::select(const FrameUniforms& frame, Selection& out) const {
@@ -131,6 +145,10 @@ void NodeTree::prepare(const FrameUniforms& frame) const {
       if (candidates_[i] <= limit) fp_ = i;
   }
   n_ = candidates_[fp_];
+  if (finestLevelUsed(n_) < pyr_.built) {
+    extendMinMaxPyramid(pyr_, *hf_, finestLevelUsed(n_));
+    allocateFlags();
+  }
   rootLevel_ = pyr_.top() - log2Int(n_ / pyr_.base);
   const double triSize = s_.sse ? 1.0 : s_.triSize;
   for (int l = 0; l <= rootLevel_ && l < kMaxLevels; ++l) {

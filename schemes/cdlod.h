@@ -62,6 +62,8 @@ class NodeTree : public InstancedLod {
   virtual void selectNodes(const FrameUniforms& frame, Selection& out) const = 0;
 
   static Footprint footprint(int n);
+  int finestLevelUsed(int n) const;
+  void allocateFlags() const;
   void prepare(const FrameUniforms& frame) const;
   Box box(int p, int i, int j) const;
   Box rectBox(double x0, double z0, double s, double hmin, double hmax) const;
@@ -77,7 +79,10 @@ class NodeTree : public InstancedLod {
   static constexpr int kMaxLevels = 32;
   Settings s_;
   std::vector<int> candidates_;
-  MinMaxPyramid pyr_;
+  // The terrain must outlive the tree: a frame that draws a smaller node size than any before
+  // makes the pyramid's finer levels from it (under mutex_, like every frame's state).
+  const Heightfield* hf_;
+  mutable MinMaxPyramid pyr_;
   std::vector<Footprint> footprints_;
   // Per-frame state: select() is const for its callers and reuses these (no allocation once warm).
   mutable std::mutex mutex_;

@@ -341,6 +341,58 @@ TEST(SchemeCdlod, AutoNodeSizeFollowsTheResolution) {
   }
 }
 
+// Auto node size builds the min-max pyramid's fine levels only when a frame first draws small
+// nodes. One tree asked for frames from the largest node size down to the smallest (each frame
+// extending the pyramid from a coarser level) and back up selects what a fresh tree selects for
+// the same frame, record for record.
+TEST(SchemeCdlod, FineLevelsMadeOnDemandSelectAsAFreshTree) {
+  const Scheme& scheme = cdlodScheme();
+  const ParamValues v = params(scheme);
+  for (const Case& c : terrains()) {
+    auto lod = scheme.instancedLod(c.hf, v);
+    Selection sel, fresh;
+    for (int w : {1920, 640, 1920, 160, 320, 1280}) {
+      const std::string what = c.name + ", " + std::to_string(w) + " px";
+      const FrameUniforms u = frameFor(c.hf, poses()[1], w, w * 9 / 16, scheme, v);
+      lod->select(u, sel);
+      scheme.instancedLod(c.hf, v)->select(u, fresh);
+      ASSERT_EQ(sel.instances.size(), fresh.instances.size()) << what;
+      for (size_t i = 0; i < sel.instances.size(); ++i) {
+        ASSERT_EQ(sel.instances[i].size(), fresh.instances[i].size()) << what << ", footprint " << i;
+        for (size_t k = 0; k < sel.instances[i].size(); ++k) {
+          EXPECT_EQ(sel.instances[i][k].a, fresh.instances[i][k].a) << what;
+          EXPECT_EQ(sel.instances[i][k].b, fresh.instances[i][k].b) << what;
+        }
+      }
+      EXPECT_GT(sel.instanceCount(), 0u) << what;
+    }
+  }
+}
+
+// A pyramid built from a coarse level and extended down is the one built at once, bit for bit,
+// on lattices finer and coarser than the samples and blocks that do not divide the terrain.
+TEST(SchemeCdlod, MinMaxPyramidExtendedDownIsTheSameBits) {
+  const Heightfield hf = cropRows(procedural(97), 61);
+  for (double q : {0.5, 1.0, 2.0})
+    for (int base : {4, 8})
+      for (int first : {1, 2, 4, 50}) {
+        const glm::dvec2 cell(hf.extent / (96 * q));
+        const MinMaxPyramid whole = buildMinMaxPyramid(hf, q, base, 64, cell);
+        MinMaxPyramid lazy = buildMinMaxPyramid(hf, q, base, 64, cell, first);
+        const std::string what = "q " + std::to_string(q) + ", base " + std::to_string(base);
+        ASSERT_EQ(lazy.built, std::min(first, whole.top())) << what;
+        EXPECT_TRUE(lazy.bounds[0].empty()) << what;
+        EXPECT_EQ(lazy.bounds[size_t(lazy.top())], whole.bounds[size_t(whole.top())]) << what;
+        extendMinMaxPyramid(lazy, hf, lazy.built / 2);
+        extendMinMaxPyramid(lazy, hf, 0);
+        ASSERT_EQ(lazy.built, 0) << what;
+        for (int p = 0; p <= whole.top(); ++p) {
+          ASSERT_FALSE(whole.bounds[size_t(p)].empty());
+          EXPECT_EQ(lazy.bounds[size_t(p)], whole.bounds[size_t(p)]) << what << ", level " << p;
+        }
+      }
+}
+
 TEST(SchemeCdlod, SeamRiskSeesAPlantedLevelGapViolation) {
   const Scheme& scheme = cdlodScheme();
   Heightfield hf = procedural(513);
