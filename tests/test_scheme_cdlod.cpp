@@ -26,6 +26,7 @@
 #include "shaders/cdlod_params.h"
 #include "shaders/shared.h"
 #include "terrain/heightfield.h"
+#include "threads_env.h"
 
 namespace lb {
 const Scheme& cdlodScheme();
@@ -673,10 +674,9 @@ TEST(SchemeCdlodSse, PrunedNodeErrorsAreTheSameBitsOnSpikesOffsetsAndFlats) {
   for (int z = 0; z < 40; ++z)
     for (int x = 0; x < 40; ++x) hf.h[size_t(z) * 129 + size_t(x)] = 8810.0f;
   hf.updateRange();
-  const char* before = std::getenv("LODBENCH_THREADS");
-  const std::string saved = before ? before : "";
-  for (const char* threads : {"1", "3", "7"}) {
-    setenv("LODBENCH_THREADS", threads, 1);
+  ThreadsEnv env(1);
+  for (int threads : {1, 3, 7}) {
+    env.set(threads);
     hf.h.back() += 1.0f;  // other heights, so that the tables' cache (keyed by their hash) is not read
     for (double q : {1.0, 2.0, 0.5}) {
       const int base = 16;
@@ -689,10 +689,6 @@ TEST(SchemeCdlodSse, PrunedNodeErrorsAreTheSameBitsOnSpikesOffsetsAndFlats) {
       EXPECT_GT(*std::max_element(want[2].begin(), want[2].end()), 100.0f);  // the spikes are in the table
     }
   }
-  if (before)
-    setenv("LODBENCH_THREADS", saved.c_str(), 1);
-  else
-    unsetenv("LODBENCH_THREADS");
 }
 
 // The top levels of cdlod-sse's node errors scan each triangle's samples in bands of rows on the
@@ -708,11 +704,10 @@ TEST(SchemeCdlodSse, TriangleDeviationInRowBandsIsTheSameBits) {
   const Heightfield hf = makeProcedural(spec);
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> coord(-80.0, 1100.0);
-  const char* before = std::getenv("LODBENCH_THREADS");
-  const std::string saved = before ? before : "";
+  ThreadsEnv env(1);
   int compared = 0;
-  for (const char* threads : {"1", "3", "7"}) {
-    setenv("LODBENCH_THREADS", threads, 1);
+  for (int threads : {1, 3, 7}) {
+    env.set(threads);
     for (int k = 0; k < 40; ++k) {
       glm::dvec2 a(coord(rng), coord(rng)), b(coord(rng), coord(rng)), c(coord(rng), coord(rng));
       if (k % 10 == 0) c = a + 0.5 * (b - a);  // degenerate: on the edge a-b
@@ -721,9 +716,5 @@ TEST(SchemeCdlodSse, TriangleDeviationInRowBandsIsTheSameBits) {
       compared += one > 0;
     }
   }
-  if (before)
-    setenv("LODBENCH_THREADS", saved.c_str(), 1);
-  else
-    unsetenv("LODBENCH_THREADS");
   EXPECT_GT(compared, 60);  // most triangles cross the terrain: the comparison is not of zeros
 }

@@ -18,6 +18,7 @@
 #include "schemes/preprocess/tess_deviation.h"
 #include "schemes/registry.h"
 #include "terrain/heightfield.h"
+#include "threads_env.h"
 
 using namespace lb;
 
@@ -266,16 +267,10 @@ TEST(ClustersMs, TableHoldsEveryClusterAsItsFootprint) {
 // Groups are simplified and clusters finished on any number of threads: the DAG is the same.
 TEST(ClusterDag, SameDagOnAnyThreadCount) {
   const Heightfield hf = procedural(200);
-  const char* was = std::getenv("LODBENCH_THREADS");
-  const std::string saved = was ? was : "";
-  setenv("LODBENCH_THREADS", "1", 1);
+  ThreadsEnv threads(1);
   const ClusterDag one = buildClusterDag(hf);
-  setenv("LODBENCH_THREADS", "3", 1);
+  threads.set(3);
   const ClusterDag three = buildClusterDag(hf);
-  if (was)
-    setenv("LODBENCH_THREADS", saved.c_str(), 1);
-  else
-    unsetenv("LODBENCH_THREADS");
   ASSERT_EQ(one.clusters.size(), three.clusters.size());
   for (size_t k = 0; k < one.clusters.size(); ++k) {
     EXPECT_EQ(one.clusters[k].vertices, three.clusters[k].vertices);

@@ -16,28 +16,11 @@
 #include "terrain/heightfield.h"
 #include "terrain/normal_map.h"
 #include "terrain/parallel_rows.h"
+#include "threads_env.h"
 
 using namespace lb;
 
 namespace {
-
-// Sets LODBENCH_THREADS for the scope, restoring the previous value after.
-struct ThreadsEnv {
-  std::string old;
-  bool had;
-  explicit ThreadsEnv(int n) {
-    const char* v = std::getenv("LODBENCH_THREADS");
-    had = v != nullptr;
-    if (had) old = v;
-    setenv("LODBENCH_THREADS", std::to_string(n).c_str(), 1);
-  }
-  ~ThreadsEnv() {
-    if (had)
-      setenv("LODBENCH_THREADS", old.c_str(), 1);
-    else
-      unsetenv("LODBENCH_THREADS");
-  }
-};
 
 template <typename Vector>
 bool sameBytes(const Vector& a, const Vector& b) {
