@@ -35,6 +35,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "error.h"
 #include "render/patch_grid.h"
@@ -43,6 +44,7 @@
 #include "shaders/shared.h"
 #include "shaders/sphere_rings_params.h"
 #include "terrain/heightfield.h"
+#include "terrain/parallel_rows.h"
 
 namespace lb {
 
@@ -108,17 +110,35 @@ PatchGeometry buildRings(const Heightfield& hf, const ParamValues& v, int grid, 
   g.schemeUnits = true;  // lattice units: worldPoint() in the control shader adds the terrain origin
   g.schemeBuffer.insert(g.schemeBuffer.end(), records.begin(), records.end());
   if (!withBounds) return g;
+  // Ring 0's cells scan their samples (row bands on the terrain threads); every coarser level
+  // takes the min and max of its 2 x 2 cells one level finer. A cell's samples are its children's:
+  // their edges are the same floats (i * 2^r * unit in double, rounded once), so their texel
+  // ranges meet or overlap, and a child past the lattice would only repeat the terrain's last
+  // samples. The same bits as scanning every level (test_scheme_rings.cpp), and the terrain is
+  // read once instead of once a ring (minutes single-threaded at 65537^2).
   const double unit = double(hf.extent) / grid;
-  for (int r = 0; r < rings; ++r) {
-    const long n = ringLatticeSize(grid, r), step = 1L << r;
-    g.schemeBuffer[size_t(r)] = float(g.schemeBuffer.size() / 2);
-    for (long j = 0; j < n; ++j)
-      for (long i = 0; i < n; ++i) {
-        glm::vec2 lo(float(i * step * unit), float(j * step * unit));
-        glm::vec2 hi(float((i + 1) * step * unit), float((j + 1) * step * unit));
-        glm::vec2 b = rectHeightBounds(hf, lo, hi);
-        g.schemeBuffer.insert(g.schemeBuffer.end(), {b.x, b.y});
+  std::vector<std::vector<glm::vec2>> levels(static_cast<size_t>(rings));
+  const long n0 = ringLatticeSize(grid, 0);
+  levels[0].resize(size_t(n0 * n0));
+  parallelRows(int(n0), [&](int j0, int j1) {
+    for (long j = j0; j < j1; ++j)
+      for (long i = 0; i < n0; ++i)
+        levels[0][size_t(j * n0 + i)] = rectHeightBounds(hf, glm::vec2(float(i * unit), float(j * unit)),
+                                                         glm::vec2(float((i + 1) * unit), float((j + 1) * unit)));
+  });
+  for (int r = 1; r < rings; ++r) {
+    const long n = ringLatticeSize(grid, r), fine = ringLatticeSize(grid, r - 1);
+    levels[size_t(r)].assign(size_t(n * n), glm::vec2(INFINITY, -INFINITY));
+    for (long j = 0; j < fine; ++j)
+      for (long i = 0; i < fine; ++i) {
+        const glm::vec2 c = levels[size_t(r - 1)][size_t(j * fine + i)];
+        glm::vec2& b = levels[size_t(r)][size_t((j / 2) * n + i / 2)];
+        b = glm::vec2(std::min(b.x, c.x), std::max(b.y, c.y));
       }
+  }
+  for (int r = 0; r < rings; ++r) {
+    g.schemeBuffer[size_t(r)] = float(g.schemeBuffer.size() / 2);
+    for (const glm::vec2& b : levels[size_t(r)]) g.schemeBuffer.insert(g.schemeBuffer.end(), {b.x, b.y});
   }
   return g;
 }

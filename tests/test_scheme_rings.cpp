@@ -15,6 +15,8 @@
 #include "schemes/sphere_rings_layout.h"
 #include "shaders/shared.h"
 #include "shaders/sphere_rings_params.h"
+#include "terrain/heightfield.h"
+#include "threads_env.h"
 
 using namespace lb;
 using lbtest::gpu;
@@ -60,6 +62,52 @@ std::vector<CameraPose> shippedPathPoses(int perPath) {
 }
 
 }  // namespace
+
+// The culling bounds of every ring level: ring 0's cells scan their samples, coarser levels combine
+// 2 x 2 finer cells. Each cell must hold what scanning its own rectangle gives (the range of every
+// sample its bilinear surface touches), on grids that are not powers of two (lattices whose last
+// cells are partial or past the terrain), a non-square terrain and an extent that is no round
+// number, with the terrain read on 1 or 3 threads.
+TEST(SphereRingsLayout, RingBoundsEqualEachCellsOwnScan) {
+  TerrainSpec spec;
+  spec.size = 97;
+  spec.seed = 6;
+  spec.extent = 777.7f;
+  spec.heightScale = 90;
+  Heightfield hf = makeProcedural(spec);
+  hf.height = 61;
+  hf.h.resize(size_t(hf.width) * size_t(hf.height));
+  hf.updateRange();
+  for (const Heightfield* t : {&testTerrain(), static_cast<const Heightfield*>(&hf)})
+    for (int grid : {48, 96, 200, 256})
+      for (int threads : {1, 3}) {
+        ThreadsEnv env(threads);
+        const std::string what = std::to_string(t->width) + "x" + std::to_string(t->height) + ", grid " +
+                                 std::to_string(grid) + ", " + std::to_string(threads) + " threads";
+        const ParamValues v = resolveParams(rings().info(), {});
+        const PatchGeometry g = rings().patchGeometry(*t, v, grid);
+        const int rcount = ringCount(v, grid);
+        ASSERT_GT(rcount, 1) << what;
+        const double unit = double(t->extent) / grid;
+        long compared = 0;
+        for (int r = 0; r < rcount; ++r) {
+          const long n = ringLatticeSize(grid, r), step = 1L << r;
+          const size_t at = size_t(g.schemeBuffer[size_t(r)]) * 2;
+          ASSERT_LE(at + size_t(2 * n * n), g.schemeBuffer.size()) << what;
+          for (long j = 0; j < n; ++j)
+            for (long i = 0; i < n; ++i) {
+              const glm::vec2 want = rectHeightBounds(
+                  *t, glm::vec2(float(i * step * unit), float(j * step * unit)),
+                  glm::vec2(float((i + 1) * step * unit), float((j + 1) * step * unit)));
+              const size_t k = at + size_t(2 * (j * n + i));
+              ASSERT_EQ(g.schemeBuffer[k], want.x) << what << ", ring " << r << ", cell " << i << ", " << j;
+              ASSERT_EQ(g.schemeBuffer[k + 1], want.y) << what << ", ring " << r << ", cell " << i << ", " << j;
+              ++compared;
+            }
+        }
+        EXPECT_GT(compared, grid * grid) << what;
+      }
+}
 
 // Ring r is an 8x8-tile square of patches 2^r lattice units wide (a 4x4-tile hole after ring 0),
 // centred on the lattice origin, so its outer half-width is 32 2^r: a point's ring follows from
