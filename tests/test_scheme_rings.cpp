@@ -96,9 +96,9 @@ TEST(SphereRingsLayout, RingBoundsEqualEachCellsOwnScan) {
           ASSERT_LE(at + size_t(2 * n * n), g.schemeBuffer.size()) << what;
           for (long j = 0; j < n; ++j)
             for (long i = 0; i < n; ++i) {
-              const glm::vec2 want = rectHeightBounds(
-                  *t, glm::vec2(float(i * step * unit), float(j * step * unit)),
-                  glm::vec2(float((i + 1) * step * unit), float((j + 1) * step * unit)));
+              const glm::vec2 want =
+                  rectHeightBounds(*t, glm::vec2(float(i * step * unit), float(j * step * unit)),
+                                   glm::vec2(float((i + 1) * step * unit), float((j + 1) * step * unit)));
               const size_t k = at + size_t(2 * (j * n + i));
               ASSERT_EQ(g.schemeBuffer[k], want.x) << what << ", ring " << r << ", cell " << i << ", " << j;
               ASSERT_EQ(g.schemeBuffer[k + 1], want.y) << what << ", ring " << r << ", cell " << i << ", " << j;
