@@ -3,9 +3,12 @@
 // reaches it. Also the "tune" field's errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "config/config.h"
 #include "error.h"
@@ -86,6 +89,42 @@ TEST(Tune, TheOldFixedGridCannotReachTheTargetTheTunedSearchDoes) {
     EXPECT_LE(evaluations, tuned["budget"].get<int>()) << "the search keeps to its budget";
   }
   EXPECT_EQ(cases, 2);
+  fs::remove_all(dir);
+}
+
+// Two or more configurations meet the target: each is timed again in interleaved rounds and the
+// choice reads the median of its rounds, not its first timing (single frames right after its
+// search). The record keeps both timings.
+TEST(Tune, ConfigurationsThatMeetTheTargetAreTimedAgainAndTheMedianDecides) {
+  json cfg = tuneRun();
+  cfg["name"] = "tune-retime";
+  cfg["schemes"] = {{{"name", "uniform"}, {"tune", {{"grid", {4, 8, 16}}}}}};
+  cfg["match"]["value"] = 4;
+  const fs::path dir = lbtest::runConfig(cfg, "tune-retime");
+  const std::vector<json> cases = lbtest::caseRecords(dir);
+  ASSERT_EQ(cases.size(), 1u);
+  const json& tuned = cases[0]["matched"]["tuned"];
+  ASSERT_EQ(tuned["configurations"].size(), 3u) << tuned.dump(2);
+  int retimed = 0;
+  double chosenCost = 0, cheapest = INFINITY;
+  for (const json& conf : tuned["configurations"]) {
+    ASSERT_TRUE(conf["search_cost_ms"].is_number()) << conf.dump();
+    const bool meets = conf["match"]["reachable"].get<bool>() || conf["match"]["achieved"].get<double>() <= 4;
+    if (conf["retimed_ms"].empty()) {
+      EXPECT_EQ(conf["cost_ms"], conf["search_cost_ms"]) << conf.dump();
+      continue;
+    }
+    EXPECT_TRUE(meets) << "only a configuration that meets the target is timed again: " << conf.dump();
+    ++retimed;
+    std::vector<double> rounds = conf["retimed_ms"].get<std::vector<double>>();
+    ASSERT_EQ(rounds.size(), 3u);
+    std::sort(rounds.begin(), rounds.end());
+    EXPECT_EQ(conf["cost_ms"].get<double>(), rounds[1]) << "the median of the rounds";
+    cheapest = std::min(cheapest, rounds[1]);
+    if (conf["settings"] == tuned["chosen"]) chosenCost = rounds[1];
+  }
+  EXPECT_GE(retimed, 2) << "the grids of 8 and 16 both reach 4 px here: " << tuned.dump(2);
+  EXPECT_EQ(chosenCost, cheapest) << "the cheapest median is chosen";
   fs::remove_all(dir);
 }
 

@@ -43,6 +43,8 @@ static CaseSearch runSearch(Context& ctx, const Scheme& scheme, const ParamValue
       trials.push_back({{"settings", tr.settings},
                         {"match", matchJson(config, tr.match)},
                         {"cost_ms", std::isnan(tr.costMs) ? json() : json(tr.costMs)},
+                        {"search_cost_ms", std::isnan(tr.searchCostMs) ? json() : json(tr.searchCostMs)},
+                        {"retimed_ms", tr.retimedMs},
                         {"seconds", tr.seconds}});
     s.matched["tuned"] = {{"space", c.tune},
                           {"chosen", t.trials[size_t(t.chosen)].settings},

@@ -41,11 +41,16 @@ MatchResult matchParameter(Context& ctx, const Scheme& scheme, const ParamValues
 // One configuration of a tuned search: its settings ("grid" and parameters), the main
 // parameter's search there, and the GPU ms a frame costs at the value found (NaN: not timed, the
 // search could not run).
+// costMs is what the choice reads: for a configuration that meets the target, when two or more
+// do, the median of its re-timed rounds (retimedMs); searchCostMs is the first timing, right after
+// its search.
 struct TuneTrial {
   std::map<std::string, double> settings;
   MatchResult match;
   double costMs = 0;
-  double seconds = 0;  // wall time of its search and timing, renderer set-up included
+  double searchCostMs = 0;
+  std::vector<double> retimedMs;  // empty: not re-timed
+  double seconds = 0;             // wall time of its search and timing, renderer set-up included
 };
 
 struct TuneResult {
