@@ -19,7 +19,9 @@
 #               workers, so one call keeps every GPU busy across several configs
 #   --gpus      workers: a count N (Vulkan devices 0..N-1, default nvidia-smi's count) or a list of
 #               device indices with commas, such as 1,2,3 or 3, (another command has the others)
-#   --deadline  seconds from now after which no shard starts and a running one is stopped (default 540)
+#   --deadline  seconds from now after which no shard starts and a running one is stopped (default 540);
+#               a stopped shard gets 30 s more to write what it keeps, so a caller with a hard time
+#               limit sets the deadline at least 40 s inside it
 #   --first     workloads whose terrain label matches REGEX are taken first (within each run)
 #   --keep-claims  leave the shard claims in place (another invocation on other GPUs shares these
 #               runs now); by default an earlier call's claims of unfinished shards are cleared
