@@ -92,9 +92,9 @@ TEST(Tune, TheOldFixedGridCannotReachTheTargetTheTunedSearchDoes) {
   fs::remove_all(dir);
 }
 
-// Two or more configurations meet the target: each is timed again in interleaved rounds and the
-// choice reads the median of its rounds, not its first timing (single frames right after its
-// search). The record keeps both timings.
+// Two or more configurations meet the target: each of them is timed again in interleaved rounds
+// and the choice reads the median of its rounds, not its first timing (single frames right after
+// its search), whatever the first timings were. The record keeps both timings.
 TEST(Tune, ConfigurationsThatMeetTheTargetAreTimedAgainAndTheMedianDecides) {
   json cfg = tuneRun();
   cfg["name"] = "tune-retime";

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -236,23 +235,17 @@ void applySettings(const std::map<std::string, double>& settings, ParamValues& p
 // each is a few single frames drawn right after its search, with the GPU idle in between: on an
 // H200 (a 32759^2 terrain's flyover) it read 2.5x what the same configuration's timed frames
 // cost, and sphere chose, by 2 % of such a timing, a configuration that then drew at 1.8x the one
-// its exact copy chose. So every candidate within kRetimeWithin of the cheapest first timing
-// (a cheaper one could hide behind that much bias; a costlier one cannot win) is timed in
-// kRetimeRounds interleaved rounds (a round of every candidate, then the next, so drift falls on
-// all alike), each pose after kRetimeWarm untimed draws, and the median of its rounds decides.
-constexpr double kRetimeWithin = 4.0;
+// its exact copy chose. So every configuration that meets the target (the first timings' bias is
+// unknown, so none is left out by them) is timed in kRetimeRounds interleaved rounds (a round of
+// every candidate, then the next, so drift falls on all alike), each pose after kRetimeWarm
+// untimed draws, and the median of its rounds decides.
 constexpr int kRetimeRounds = 3, kRetimeWarm = 8;
 
 void retimeCandidates(Context& ctx, const Scheme& scheme, const ParamValues& base, const Heightfield& terrain,
                       const CameraPath& path, const Config& each, const Case& c, std::vector<TuneTrial>& trials) {
-  double cheapest = std::numeric_limits<double>::infinity();
-  for (const TuneTrial& t : trials)
-    if (!std::isnan(t.costMs) && meetsTarget(t.match, each.match)) cheapest = std::min(cheapest, t.costMs);
   std::vector<size_t> candidates;
   for (size_t i = 0; i < trials.size(); ++i)
-    if (!std::isnan(trials[i].costMs) && meetsTarget(trials[i].match, each.match) &&
-        trials[i].costMs <= kRetimeWithin * cheapest)
-      candidates.push_back(i);
+    if (!std::isnan(trials[i].costMs) && meetsTarget(trials[i].match, each.match)) candidates.push_back(i);
   if (candidates.size() < 2) return;
   for (int round = 0; round < kRetimeRounds; ++round)
     for (size_t i : candidates) {
