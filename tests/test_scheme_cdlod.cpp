@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "camera/camera_matrices.h"
+#include "crop_rows.h"
 #include "render/instanced.h"
 #include "render/renderer.h"
 #include "render/scheme.h"
@@ -44,15 +45,6 @@ Heightfield procedural(int size, double scale = 1.0, float heightScale = 120.0f)
   s.extent = float(1000.0 * scale);
   s.heightScale = float(heightScale * scale);
   return makeProcedural(s);
-}
-
-// Rows [0, rows) of a square terrain: non-square samples, stretched over the same extent.
-Heightfield cropRows(const Heightfield& hf, int rows) {
-  Heightfield out = hf;
-  out.height = rows;
-  out.h.resize(size_t(hf.width) * size_t(rows));
-  out.updateRange();
-  return out;
 }
 
 // A pose in units of the extent, eye and target heights above the ground under them.
@@ -286,7 +278,7 @@ std::vector<Case> terrains() {
   Heightfield p257 = procedural(257);
   return {{"procedural257", p257},
           {"procedural513", procedural(513)},
-          {"nonsquare257x129", cropRows(p257, 129)},
+          {"nonsquare257x129", lbtest::cropRows(p257, 129)},
           {"flat", procedural(129, 1.0, 0.0f)}};
 }
 
@@ -373,7 +365,7 @@ TEST(SchemeCdlod, FineLevelsMadeOnDemandSelectAsAFreshTree) {
 // A pyramid built from a coarse level and extended down is the one built at once, bit for bit,
 // on lattices finer and coarser than the samples and blocks that do not divide the terrain.
 TEST(SchemeCdlod, MinMaxPyramidExtendedDownIsTheSameBits) {
-  const Heightfield hf = cropRows(procedural(97), 61);
+  const Heightfield hf = lbtest::cropRows(procedural(97), 61);
   for (double q : {0.5, 1.0, 2.0})
     for (int base : {4, 8})
       for (int first : {1, 2, 4, 50}) {

@@ -25,6 +25,7 @@
 
 #include "cli_run.h"
 #include "config/config.h"
+#include "crop_rows.h"
 #include "gpu_fixture.h"
 #include "metrics/gpu_raycast.h"
 #include "render/renderer.h"
@@ -54,11 +55,7 @@ const Heightfield& wideTerrain() {
     s.seed = 11;
     s.extent = 1000;
     s.heightScale = 150;
-    Heightfield t = makeProcedural(s);
-    t.height = 769;
-    t.h.resize(size_t(t.width) * size_t(t.height));
-    t.updateRange();
-    return t;
+    return lbtest::cropRows(makeProcedural(s), 769);
   }();
   return hf;
 }
